@@ -1,0 +1,43 @@
+# Two commands: `make demo` and `make test` set everything up on a fresh machine and run.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+PIP    := $(BIN)/python -m pip install -q --disable-pip-version-check
+SPEED  ?= 10
+
+.PHONY: demo test bench system-deps schema docs clean
+
+$(BIN)/python:
+	scripts/venv.sh $(PYTHON) $(VENV)
+
+# Re-install whenever the package metadata changes; one stamp per set of extras.
+$(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
+	$(PIP) -e .
+	touch $@
+
+$(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
+	$(PIP) -e ".[test,bench]"
+	touch $@
+
+system-deps:
+	scripts/system-deps.sh
+
+## demo: the lab tour (dry backend until the simulator lands), report in out/
+demo: system-deps $(VENV)/.stamp-base
+	$(BIN)/stuart-bt run trees/lab_tour.yaml --backend dry --speed $(SPEED) \
+		--report out/lab_tour_report.json --log out/lab_tour.jsonl
+
+## test: the whole pytest suite
+test: system-deps $(VENV)/.stamp-test
+	$(BIN)/python -m pytest
+
+## bench: benchmarks -> bench/results.json and a table
+bench: system-deps $(VENV)/.stamp-test
+	$(BIN)/python -m bench.run
+
+## schema: regenerate docs/tree.schema.json from the catalogue
+schema: $(VENV)/.stamp-base
+	$(BIN)/stuart-bt schema -o docs/tree.schema.json
+
+clean:
+	rm -rf $(VENV) out .pytest_cache

@@ -1,0 +1,1 @@
+"""Simulator: MuJoCo models, scenes, maps and the world server (filled by the simulator work)."""

@@ -1,0 +1,1 @@
+"""Daemon programs, one per skill family, and their backends (dry, sim, unitree)."""

@@ -1,0 +1,245 @@
+"""``stuart-bt``: validate, draw and run behaviour trees; benchmarks; gesture library.
+
+Every command prints one clear message per problem and exits non-zero on bad input; a Python
+traceback only appears with ``--debug``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+from . import __version__
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+
+class UserError(Exception):
+    """A problem the user can fix; printed as one line without a traceback."""
+
+
+# -- commands ----------------------------------------------------------------------------------------
+def cmd_validate(args: argparse.Namespace) -> int:
+    from .tree.errors import TreeLoadError
+    from .tree.loader import load_tree
+
+    status = EXIT_OK
+    for file in args.files:
+        try:
+            load_tree(file, markers_file=args.markers)
+        except TreeLoadError as e:
+            for error in e.errors:
+                print(error, file=sys.stderr)
+            status = EXIT_FAILED
+        else:
+            if not args.quiet:
+                print(f"{file}: ok")
+    return status
+
+
+def cmd_show(args: argparse.Namespace) -> int:
+    from .tree.render import render
+
+    spec = _load(args.file, args.markers)
+    fmt = args.format
+    if fmt is None:
+        fmt = Path(args.output).suffix.lstrip(".") if args.output else "unicode"
+        if fmt not in SHOW_FORMATS:
+            raise UserError(f"cannot tell the format from {args.output!r}; pass --format")
+    out = render(spec, fmt)
+    if args.output:
+        Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+        if isinstance(out, bytes):
+            Path(args.output).write_bytes(out)
+        else:
+            Path(args.output).write_text(out, encoding="utf-8")
+        print(f"wrote {args.output}", file=sys.stderr)
+    elif isinstance(out, bytes):
+        if sys.stdout.isatty():
+            raise UserError(f"{fmt} is binary: pass -o FILE")
+        sys.stdout.buffer.write(out)
+    else:
+        sys.stdout.write(out if out.endswith("\n") else out + "\n")
+    return EXIT_OK
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .runner import RunOptions, Session
+    from .view import make_view
+
+    spec = _load(args.file, args.markers)
+    options = RunOptions(
+        backend=args.backend, rate=args.rate, speed=args.speed, start=args.start,
+        report=Path(args.report) if args.report else None, log=Path(args.log) if args.log else None,
+        max_duration=args.max_duration,
+    )
+    if args.rate <= 0 or args.speed <= 0:
+        raise UserError("--rate and --speed must be positive")
+    session = Session(spec, options)
+    view = make_view(args.view, spec, session.events)
+    interrupted: list[str] = []
+
+    def on_signal(signum: int, _frame: Any) -> None:
+        name = signal.Signals(signum).name
+        if interrupted:  # second Ctrl-C: give up waiting, the finally block still stops the daemons
+            raise KeyboardInterrupt
+        interrupted.append(name)
+        session.request_stop(f"interrupted ({name})")
+
+    previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        with session:
+            view.start()
+            try:
+                outcome = session.run()
+            finally:
+                view.stop()
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+    report = session.report()
+    view.summary(report)
+    if args.report:
+        print(f"report: {args.report}", file=sys.stderr)
+    if outcome.status == "SUCCESS":
+        return EXIT_OK
+    return EXIT_INTERRUPTED if interrupted else EXIT_FAILED
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    from bench.run import main as bench_main  # type: ignore[import-not-found]
+
+    return bench_main(args.rest)
+
+
+def cmd_gesture_list(args: argparse.Namespace) -> int:
+    from . import gestures
+
+    aliases: dict[str, list[str]] = {}
+    for alias, target in gestures.ALIASES.items():
+        aliases.setdefault(target, []).append(alias)
+    print(f"{'name':<16} {'id':>4}  {'seconds':>7}  {'holds':<5}  aliases")
+    for g in gestures.LIBRARY.values():
+        print(f"{g.name:<16} {g.action_id:>4}  {g.duration:>7.1f}  {'yes' if g.holds else 'no':<5}  "
+              f"{', '.join(aliases.get(g.name, []))}")
+    return EXIT_OK
+
+
+def cmd_schema(args: argparse.Namespace) -> int:
+    import json
+
+    from .tree.schema import tree_schema
+
+    text = json.dumps(tree_schema(), indent=2) + "\n"
+    if args.output:
+        Path(args.output).write_text(text, encoding="utf-8")
+    else:
+        sys.stdout.write(text)
+    return EXIT_OK
+
+
+# -- plumbing ----------------------------------------------------------------------------------------
+SHOW_FORMATS = ("unicode", "ascii", "dot", "svg", "png", "yaml")
+
+
+def _load(file: str, markers: str | None) -> Any:
+    from .tree.errors import TreeLoadError
+    from .tree.loader import load_tree
+
+    try:
+        return load_tree(file, markers_file=markers)
+    except TreeLoadError as e:
+        raise UserError("\n".join(str(err) for err in e.errors)) from None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="stuart-bt",
+        description="Behaviour trees for the Unitree G1 'Stuart': validate, draw and run YAML trees.",
+    )
+    parser.add_argument("--version", action="version", version=f"stuart-bt {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show Python tracebacks for internal errors")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    p = sub.add_parser("validate", help="check tree files; print every problem as file:line:col: message")
+    p.add_argument("files", nargs="+", metavar="FILE")
+    p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing for valid files")
+    p.set_defaults(func=cmd_validate)
+
+    p = sub.add_parser("show", help="draw a tree (text, Graphviz dot, SVG, PNG) or export it as YAML")
+    p.add_argument("file", metavar="FILE")
+    p.add_argument("--format", choices=SHOW_FORMATS, help="default: from -o's extension, else unicode")
+    p.add_argument("-o", "--output", metavar="OUT", help="write to a file instead of stdout")
+    p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
+    p.set_defaults(func=cmd_show)
+
+    p = sub.add_parser("run", help="run a tree against a backend with a live view; Ctrl-C stops cleanly")
+    p.add_argument("file", metavar="FILE")
+    p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry",
+                   help="dry: symbolic, no world (default); sim: MuJoCo; unitree: the robot")
+    p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
+    p.add_argument("--speed", type=float, default=1.0,
+                   help="clock speed-up for dry runs (clock seconds per wall second, default 1)")
+    p.add_argument("--start", metavar="MARKER", help="marker the robot starts at (default: entrance)")
+    p.add_argument("--report", metavar="OUT.json", help="write the run report")
+    p.add_argument("--log", metavar="OUT.jsonl", help="write every event as JSON lines")
+    p.add_argument("--view", choices=("auto", "live", "log", "none"), default="auto",
+                   help="live: redrawn tree (default on a terminal); log: one line per event; none")
+    p.add_argument("--max-duration", type=float, metavar="S", help="halt the run after S clock seconds")
+    p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("bench", help="run the benchmarks; writes bench/results.json and prints a table")
+    p.add_argument("rest", nargs=argparse.REMAINDER, help="options for bench/run.py (see --help there)")
+    p.set_defaults(func=cmd_bench)
+
+    p = sub.add_parser("gesture", help="the gesture library")
+    gsub = p.add_subparsers(dest="gesture_command", metavar="ACTION", required=True)
+    g = gsub.add_parser("list", help="list gesture names, vendor action ids and durations")
+    g.set_defaults(func=cmd_gesture_list)
+
+    p = sub.add_parser("schema", help="print the JSON Schema of tree files (for editors)")
+    p.add_argument("-o", "--output", metavar="FILE")
+    p.set_defaults(func=cmd_schema)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    func: Callable[[argparse.Namespace], int] = args.func
+    try:
+        return func(args)
+    except UserError as e:
+        print(f"stuart-bt: {e}" if "\n" not in str(e) else str(e), file=sys.stderr)
+        return EXIT_FAILED
+    except KeyboardInterrupt:
+        print("stuart-bt: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        return EXIT_OK
+    except Exception as e:  # noqa: BLE001 - the last line of defence: one line, no traceback
+        if args.debug:
+            raise
+        known = _known_error(e)
+        if known:
+            print(f"stuart-bt: {known}", file=sys.stderr)
+            return EXIT_FAILED
+        print(f"stuart-bt: internal error: {type(e).__name__}: {e} (run with --debug for details)", file=sys.stderr)
+        return EXIT_FAILED
+
+
+def _known_error(e: Exception) -> str | None:
+    """Messages of the framework's own error types (and OS errors) are already user-facing."""
+    names = {"DaemonStartError", "MarkerFileError", "RenderError", "ProtocolError", "ExprError"}
+    if type(e).__name__ in names or isinstance(e, (OSError, ValueError)):
+        return str(e)
+    return None
+
+
+if __name__ == "__main__":
+    sys.exit(main())

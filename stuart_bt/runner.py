@@ -1,0 +1,166 @@
+"""Run a loaded tree end to end: clock, event stream, blackboard, daemons, executor, report.
+
+:class:`Session` wires the seams together in one place so that the CLI, tests and (later) the web
+view and the ROS bridge start runs the same way::
+
+    spec = load_tree("trees/lab_tour.yaml")
+    with Session(spec, RunOptions(backend="dry", speed=20)) as session:
+        outcome = session.run()
+        report = session.report()
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import IO, Any
+
+from .blackboard import Blackboard
+from .catalogue import LEAVES
+from .clock import Clock, ScaledClock
+from .daemon.supervisor import Supervisor
+from .events import EventStream, JsonlWriter
+from .executor import Executor, RunOutcome
+from .leaves import RunContext, make_leaf
+from .report import ReportBuilder, write_report
+from .tree.builder import build
+from .tree.spec import TreeSpec
+from .world import Pose, load_markers
+
+BACKENDS = ("dry", "sim", "unitree")
+
+
+@dataclass
+class RunOptions:
+    backend: str = "dry"
+    rate: float = 20.0
+    speed: float = 1.0  # clock seconds per wall second (dry backend: run faster than real time)
+    start: str | None = None  # marker the robot starts at; default 'entrance' when the map has it
+    report: Path | None = None
+    log: Path | None = None
+    max_duration: float | None = None  # clock seconds
+    daemon_options: dict[str, dict[str, Any]] = field(default_factory=dict)
+    handshake_timeout: float = 20.0
+    heartbeat_timeout: float = 1.0
+
+
+class Session:
+    """One run of one tree. Use as a context manager: daemons always shut down."""
+
+    def __init__(self, spec: TreeSpec, options: RunOptions | None = None, clock: Clock | None = None,
+                 events: EventStream | None = None) -> None:
+        self.spec = spec
+        self.options = options or RunOptions()
+        if self.options.backend not in BACKENDS:
+            raise ValueError(f"unknown backend {self.options.backend!r}; choose one of {', '.join(BACKENDS)}")
+        self.clock = clock or ScaledClock(self.options.speed)
+        self.events = events or EventStream(self.clock)
+        self.recorder = ReportBuilder(self.events)
+        self.blackboard = Blackboard(self.events, spec.blackboard)
+        self.supervisor: Supervisor | None = None
+        self.executor: Executor | None = None
+        self.outcome: RunOutcome | None = None
+        self._log_file: IO[str] | None = None
+        self._log_writer: JsonlWriter | None = None
+
+    # -- set-up -------------------------------------------------------------------------------------
+    def start(self) -> "Session":
+        if self.options.log:
+            Path(self.options.log).parent.mkdir(parents=True, exist_ok=True)
+            self._log_file = open(self.options.log, "w", encoding="utf-8")
+            self._log_writer = JsonlWriter(self.events, self._log_file)
+        world = self.blackboard.world
+        if self.spec.markers_file:
+            world.markers = load_markers(self.spec.markers_file)
+        start = self.options.start or ("entrance" if "entrance" in world.markers else None)
+        if start is not None:
+            if start not in world.markers:
+                raise ValueError(f"unknown start marker {start!r}")
+            world.pose = world.markers[start].pose
+            world.last_marker = start
+        families = needed_families(self.spec)
+        if families:
+            options = {f: dict(self.options.daemon_options.get(f, {})) for f in families}
+            options.setdefault("loco", {}).setdefault("start_pose", world.pose.to_dict())
+            self.supervisor = Supervisor(
+                self.options.backend, self.clock, self.events, families=families, options=options,
+                handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
+            )
+            self.supervisor.start()
+        ctx = RunContext(self.clock, self.events, self.blackboard, self.supervisor, Path(self.spec.file).parent)
+        root = build(self.spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
+        self.executor = Executor(root, self.clock, self.events, rate=self.options.rate)
+        if self.supervisor is not None:
+            self.executor.pre_tick += [self.supervisor.poll, self._sync_pose]
+            self.executor.on_halt.append(self._stop_daemons)
+        return self
+
+    def __enter__(self) -> "Session":
+        return self.start()
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # -- running ------------------------------------------------------------------------------------
+    def run(self) -> RunOutcome:
+        assert self.executor is not None, "call start() first"
+        self.events.publish("run", phase="start", tree=self.spec.file, backend=self.options.backend,
+                            rate=self.options.rate, speed=self.clock.factor)
+        self.outcome = self.executor.run(self.options.max_duration)
+        self.events.publish("run", phase="end", status=self.outcome.status, reason=self.outcome.reason)
+        if self.options.report:
+            write_report(self.report(), self.options.report)
+        return self.outcome
+
+    def request_stop(self, reason: str = "stop requested") -> None:
+        if self.executor is not None:
+            self.executor.request_stop(reason)
+
+    def report(self) -> dict[str, Any]:
+        outcome = self.outcome
+        return self.recorder.build(
+            status=outcome.status if outcome else "NOT_RUN",
+            reason=outcome.reason if outcome else None,
+            tree=self.spec.file,
+            backend=self.options.backend,
+            ticks=outcome.ticks if outcome else 0,
+            final_pose=self.blackboard.world.pose.to_dict(),
+            held=self.blackboard.world.held,
+        )
+
+    def close(self) -> None:
+        if self.supervisor is not None:
+            self.supervisor.shutdown()
+        if self._log_writer is not None:
+            self._log_writer.close()
+        if self._log_file is not None:
+            self._log_file.close()
+        self.recorder.close()
+
+    # -- hooks --------------------------------------------------------------------------------------
+    def _sync_pose(self) -> None:
+        """Copy the loco daemon's latest pose (heartbeat state) into the world state."""
+        assert self.supervisor is not None
+        if "loco" not in self.supervisor.families:
+            return
+        pose = (self.supervisor.client("loco").state or {}).get("pose")
+        if pose:
+            self.blackboard.world.pose = Pose.from_dict(pose)
+
+    def _stop_daemons(self) -> None:
+        """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""
+        assert self.supervisor is not None
+        for request in self.supervisor.stop_all():
+            self.supervisor.wait(request, timeout=1.0)
+
+
+def needed_families(spec: TreeSpec) -> list[str]:
+    """Daemon families the tree's leaves use (``stop`` reaches every family that runs)."""
+    families = {LEAVES[n.kind].family for n in spec.walk() if n.kind in LEAVES}
+    families.discard(None)
+    return sorted(families)  # type: ignore[arg-type]
+
+
+def load_report(path: str | Path) -> dict[str, Any]:
+    return json.loads(Path(path).read_text(encoding="utf-8"))

@@ -1,0 +1,123 @@
+"""The world state the planner and the leaves share: pose, held object, known objects, markers.
+
+It lives on the blackboard under the key ``world`` (see :mod:`stuart_bt.blackboard`), so tree
+expressions can read it (``world.held == 'bottle'``) and every leaf updates it from its daemon's
+results (navigate -> pose, pick -> held). Units and frames follow REP-103: metres, radians, map
+frame x forward / y left, yaw counter-clockwise.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+
+@dataclass
+class Pose:
+    x: float = 0.0
+    y: float = 0.0
+    yaw: float = 0.0
+
+    def distance_to(self, other: "Pose") -> float:
+        return math.hypot(other.x - self.x, other.y - self.y)
+
+    def to_dict(self) -> dict[str, float]:
+        return {"x": round(self.x, 4), "y": round(self.y, 4), "yaw": round(self.yaw, 4)}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> "Pose":
+        return cls(float(d.get("x", 0.0)), float(d.get("y", 0.0)), float(d.get("yaw", 0.0)))
+
+
+@dataclass(frozen=True)
+class Marker:
+    name: str
+    x: float
+    y: float
+    yaw: float = 0.0
+    display_name: str = ""
+
+    @property
+    def pose(self) -> Pose:
+        return Pose(self.x, self.y, self.yaw)
+
+    @property
+    def label(self) -> str:
+        return self.display_name or self.name.replace("_", " ")
+
+
+@dataclass
+class KnownObject:
+    label: str
+    x: float
+    y: float
+    z: float = 0.0
+    confidence: float = 1.0
+    seen_at: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+@dataclass
+class WorldState:
+    pose: Pose = field(default_factory=Pose)
+    held: str | None = None  # label of the object in hand
+    held_arm: str | None = None
+    objects: dict[str, KnownObject] = field(default_factory=dict)
+    markers: dict[str, Marker] = field(default_factory=dict)
+    last_marker: str | None = None  # the marker most recently arrived at
+
+    @property
+    def holding(self) -> bool:
+        return self.held is not None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "pose": self.pose.to_dict(),
+            "held": self.held,
+            "held_arm": self.held_arm,
+            "objects": {k: v.to_dict() for k, v in self.objects.items()},
+            "markers": sorted(self.markers),
+            "last_marker": self.last_marker,
+        }
+
+
+class MarkerFileError(ValueError):
+    pass
+
+
+def load_markers(path: str | Path) -> dict[str, Marker]:
+    """Read a marker file: ``{"frame": "map", "markers": {name: {x, y, yaw, display_name}}}``."""
+    path = Path(path)
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise MarkerFileError(f"{path}: marker file not found") from None
+    except json.JSONDecodeError as e:
+        raise MarkerFileError(f"{path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
+    entries = doc.get("markers") if isinstance(doc, dict) else None
+    if not isinstance(entries, dict):
+        raise MarkerFileError(f"{path}: expected an object with a 'markers' mapping")
+    markers: dict[str, Marker] = {}
+    for name, m in entries.items():
+        try:
+            markers[name] = Marker(
+                name, float(m["x"]), float(m["y"]), float(m.get("yaw", 0.0)), str(m.get("display_name", ""))
+            )
+        except (KeyError, TypeError, ValueError):
+            raise MarkerFileError(f"{path}: marker {name!r} needs numeric x and y (and optional yaw)") from None
+    return markers
+
+
+def save_markers(path: str | Path, markers: dict[str, Marker], frame: str = "map") -> None:
+    body = {
+        "frame": frame,
+        "markers": {
+            m.name: {"x": m.x, "y": m.y, "yaw": m.yaw, "display_name": m.display_name} for m in markers.values()
+        },
+    }
+    Path(path).write_text(json.dumps(body, indent=2) + "\n", encoding="utf-8")

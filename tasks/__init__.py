@@ -1,0 +1,1 @@
+"""HTN task domain (filled by the voice-missions work)."""
