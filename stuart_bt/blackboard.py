@@ -46,7 +46,11 @@ class Blackboard:
             return default
 
     def __contains__(self, key: str) -> bool:
-        return self.get(key, _MISSING) is not _MISSING
+        try:
+            resolve_dotted(self._data, key)
+        except KeyError:
+            return False
+        return True
 
     def set(self, key: str, value: Any) -> None:
         with self._lock:

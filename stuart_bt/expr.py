@@ -60,14 +60,18 @@ class Expression:
     @property
     def names(self) -> list[str]:
         """Blackboard keys the expression reads (dotted), in order of appearance."""
-        found: list[str] = []
+        inner = {id(n.value) for n in ast.walk(self._tree) if isinstance(n, ast.Attribute)}
+        found: list[tuple[int, str]] = []
         for node in ast.walk(self._tree):
-            if isinstance(node, (ast.Name, ast.Attribute)):
+            if isinstance(node, (ast.Name, ast.Attribute)) and id(node) not in inner:
                 dotted = _dotted(node)
-                if dotted and dotted.split(".")[0] not in _CONSTANT_NAMES | _FUNCTIONS.keys():
-                    if not any(f.startswith(dotted + ".") or f == dotted for f in found):
-                        found = [f for f in found if not dotted.startswith(f + ".")] + [dotted]
-        return found
+                if dotted and dotted.split(".")[0] not in _CONSTANT_NAMES.keys() | _FUNCTIONS.keys():
+                    found.append((node.col_offset, dotted))
+        ordered: list[str] = []
+        for _, dotted in sorted(found):
+            if dotted not in ordered:
+                ordered.append(dotted)
+        return ordered
 
     def evaluate(self, lookup: Lookup) -> Any:
         try:
