@@ -19,6 +19,10 @@ $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
 	$(PIP) -e ".[test,bench]"
 	touch $@
 
+$(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
+	$(PIP) -e ".[test,bench,ros]"
+	touch $@
+
 system-deps:
 	scripts/system-deps.sh
 
@@ -32,7 +36,7 @@ test: system-deps $(VENV)/.stamp-test
 	$(BIN)/python -m pytest
 
 ## bench: benchmarks -> bench/results.json and a table
-bench: system-deps $(VENV)/.stamp-test
+bench: system-deps $(VENV)/.stamp-bench
 	$(BIN)/python -m bench.run
 
 ## schema: regenerate docs/tree.schema.json from the catalogue

@@ -17,6 +17,7 @@ setup(
     packages=packages,
     package_dir=package_dir,
     package_data={
+        "stuart_bt.skills": ["*.json"],
         "stuart_bt.sim": ["maps/*.json", "scenes/*.xml", "models/*.xml"],
         "stuart_bt.tasks": ["*.yaml"],
     },

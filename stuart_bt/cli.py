@@ -133,7 +133,7 @@ def cmd_schema(args: argparse.Namespace) -> int:
 
     from .tree.schema import tree_schema
 
-    text = json.dumps(tree_schema(), indent=2) + "\n"
+    text = json.dumps(tree_schema(), indent=2, ensure_ascii=False) + "\n"
     if args.output:
         Path(args.output).write_text(text, encoding="utf-8")
     else:

@@ -55,11 +55,11 @@ def build_report(events: Iterable[Event], **summary: Any) -> dict[str, Any]:
                 continue
             _collect(record, result, e.t, visited, spoken, gestures, picks, releases, found)
         elif e.kind == "leaf" and d.get("outcome") == "FAILURE":
-            failures.append({"path": e.path, "kind": d.get("kind"), "reason": d.get("reason"), "t": e.t})
+            failures.append({"path": e.path, "skill": d.get("skill"), "reason": d.get("reason"), "t": e.t})
         elif e.kind == "warning":
             warnings.append(str(d.get("message")))
-        elif e.kind == "world" and "pose" in d:
-            final_pose = d["pose"]
+        elif e.kind == "pose":
+            final_pose = {k: d[k] for k in ("x", "y", "yaw") if k in d}
 
     run_events = [e for e in events if e.kind == "run"]
     start = run_events[0].t if run_events else (events[0].t if events else 0.0)

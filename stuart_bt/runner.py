@@ -12,6 +12,7 @@ view and the ROS bridge start runs the same way::
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
@@ -20,7 +21,7 @@ from .blackboard import Blackboard
 from .catalogue import LEAVES
 from .clock import Clock, ScaledClock
 from .daemon.supervisor import Supervisor
-from .events import EventStream, JsonlWriter
+from .events import Event, EventStream, JsonlWriter
 from .executor import Executor, RunOutcome
 from .leaves import RunContext, make_leaf
 from .report import ReportBuilder, write_report
@@ -92,8 +93,11 @@ class Session:
         root = build(self.spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
         self.executor = Executor(root, self.clock, self.events, rate=self.options.rate)
         if self.supervisor is not None:
-            self.executor.pre_tick += [self.supervisor.poll, self._sync_pose]
+            self.executor.pre_tick.append(self.supervisor.poll)
             self.executor.on_halt.append(self._stop_daemons)
+            if "loco" in self.supervisor.families:
+                self.supervisor.client("loco").state_listeners.append(self._track_pose)
+                self.events.subscribe(self._track_loco_replies)
         return self
 
     def __enter__(self) -> "Session":
@@ -108,6 +112,7 @@ class Session:
         self.events.publish("run", phase="start", tree=self.spec.file, backend=self.options.backend,
                             rate=self.options.rate, speed=self.clock.factor)
         self.outcome = self.executor.run(self.options.max_duration)
+        self._settle()
         self.events.publish("run", phase="end", status=self.outcome.status, reason=self.outcome.reason)
         if self.options.report:
             write_report(self.report(), self.options.report)
@@ -139,14 +144,37 @@ class Session:
         self.recorder.close()
 
     # -- hooks --------------------------------------------------------------------------------------
-    def _sync_pose(self) -> None:
-        """Copy the loco daemon's latest pose (heartbeat state) into the world state."""
-        assert self.supervisor is not None
-        if "loco" not in self.supervisor.families:
+    def _track_pose(self, state: dict[str, Any]) -> None:
+        """Heartbeat state from the loco daemon: the robot's pose right now."""
+        if isinstance(state.get("pose"), dict):
+            self._set_pose(state["pose"])
+
+    def _track_loco_replies(self, event: Event) -> None:
+        """Progress, results and stop/cancel replies of the loco daemon carry the latest pose."""
+        if event.kind != "daemon" or event.data.get("family") != "loco":
             return
-        pose = (self.supervisor.client("loco").state or {}).get("pose")
-        if pose:
-            self.blackboard.world.pose = Pose.from_dict(pose)
+        for key in ("data", "result"):
+            body = event.data.get(key)
+            if isinstance(body, dict) and isinstance(body.get("pose"), dict):
+                self._set_pose(body["pose"])
+
+    def _set_pose(self, pose: dict[str, Any]) -> None:
+        new = Pose.from_dict(pose)
+        world = self.blackboard.world
+        moved = world.pose.distance_to(new) > 0.01 or abs(math.remainder(new.yaw - world.pose.yaw, math.tau)) > 0.01
+        world.pose = new
+        if moved:
+            self.events.publish("pose", **new.to_dict())
+
+    def _settle(self, timeout: float = 1.0) -> None:
+        """After the run: wait (wall time) for replies still owed, e.g. to cancels, so the report
+        and the world state end with what the daemons last did."""
+        if self.supervisor is None:
+            return
+        for family in self.supervisor.families:
+            for request in self.supervisor.client(family).in_flight:
+                if request.cmd in ("cancel", "stop"):
+                    self.supervisor.wait(request, timeout=timeout)
 
     def _stop_daemons(self) -> None:
         """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""

@@ -170,7 +170,7 @@ class Leaf(py_trees.behaviour.Behaviour):
         if status == Status.FAILURE:
             bb.set("last_failure", {"path": self.spec_path, "reason": self.failure_reason})
         self.ctx.events.publish(
-            "leaf", self.spec_path, kind=self.spec.kind, outcome=outcome, reason=self.failure_reason or None,
+            "leaf", self.spec_path, skill=self.spec.kind, outcome=outcome, reason=self.failure_reason or None,
             result=self.result or None,
         )
 

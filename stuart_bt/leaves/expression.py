@@ -13,6 +13,7 @@ from typing import Any
 from .. import gestures
 from ..suggest import did_you_mean
 from .base import LeafFailure, SkillLeaf, RunContext
+from ..tree.include_params import base_dir_of
 from ..tree.spec import NodeSpec
 
 
@@ -39,7 +40,9 @@ class Gesture(SkillLeaf):
 
     def command(self) -> tuple[str, dict[str, Any]]:
         if self.has("file"):
-            return "play", {"keyframes": load_gesture_file(self.ctx.tree_dir / str(self.param("file")))}
+            where = self.spec.param_locations.get("file")
+            base = base_dir_of(where.file) if where else self.ctx.tree_dir
+            return "play", {"keyframes": load_gesture_file(base / str(self.param("file")))}
         if self.has("sequence"):
             names = self.param("sequence")
             if isinstance(names, str):

@@ -1,0 +1,55 @@
+"""bench.run --quick end to end: every figure is produced, numeric, with a well-formed anchor.
+
+Behaviour only: timings on a shared machine prove nothing in a test, so none is asserted.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+SIZES = (10, 100, 1000)
+EXPECTED = [
+    *(f"tick_overhead.{who}.{kind}-{size}" for who in ("executor", "py_trees")
+      for kind in ("flat", "nested", "flip") for size in SIZES),
+    "roundtrip.stuart_bt.median",
+    "roundtrip.stuart_bt.p99",
+    "roundtrip.stuart_bt.median_vs_rclpy_same_process",
+    "roundtrip.stuart_bt.median_vs_rclpy_two_process",
+]
+
+
+def _number(value: object) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and value == value  # not NaN
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(90)
+def test_quick_run_writes_every_figure(tmp_path: Path) -> None:
+    out = tmp_path / "results.json"
+    done = subprocess.run([sys.executable, "-m", "bench.run", "--quick", "-o", str(out)], cwd=REPO,
+                          capture_output=True, text=True, timeout=80)
+    assert done.returncode == 0, done.stderr[-2000:]
+    report = json.loads(out.read_text())
+
+    assert report["errors"] == {}
+    assert {"cpu_count", "python", "platform", "date"} <= set(report["machine"])
+    results = {r["name"]: r for r in report["results"]}
+    assert sorted(results) == sorted(EXPECTED)
+    for name, r in results.items():
+        assert _number(r["value"]) and r["value"] > 0, name
+        assert r["unit"], name
+        assert r["met"] in (True, False, None), name
+        if r["anchor"] is None:
+            assert r["ratio"] is None and r["note"], f"{name}: a missing anchor needs a note saying why"
+        else:
+            assert r["anchor"]["name"] and _number(r["anchor"]["value"]), name
+            assert _number(r["ratio"]), name
+        if r["goal"] is None:
+            assert r["met"] is None, f"{name}: no goal, so nothing can be met"
+    assert all(name.split(".", 1)[1] in done.stdout for name in EXPECTED)  # the printed table lists them all

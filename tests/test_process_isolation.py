@@ -1,0 +1,99 @@
+"""Process isolation: the framework never loads a vendor SDK, a daemon never loads ROS.
+
+Each process runs under a tiny import recorder (a ``sys.meta_path`` entry that writes down every
+module name asked for, imported or not, as it happens), so an attempt counts even when the
+package is not installed here and even if the process has to be killed. The test iterates over
+every family and every backend in each family's registry, so later ``sim`` and ``unitree``
+backends are covered as soon as they are registered.
+"""
+
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from stuart_bt.catalogue import FAMILIES
+
+VENDOR = ("unitree_sdk2py", "unitree_sdk2", "cyclonedds")
+ROS = ("rclpy", "rosidl", "std_msgs", "geometry_msgs", "rmw", "rcl_interfaces", "builtin_interfaces")
+
+RECORDER = r"""
+import sys
+
+class ImportRecorder:
+    def __init__(self, path):
+        self.file = open(path, "a", buffering=1)
+
+    def find_spec(self, name, path=None, target=None):
+        self.file.write(name + "\n")
+        return None
+
+recorder = ImportRecorder(sys.argv[1])
+recorder.file.write("\n".join(sys.modules) + "\n")
+sys.meta_path.insert(0, recorder)
+mode, target, rest = sys.argv[2], sys.argv[3], sys.argv[4:]
+if mode == "daemon":
+    import runpy
+    sys.argv = [target, *rest]
+    runpy.run_module(target, run_name="__main__", alter_sys=True)
+elif mode == "code":
+    exec(target)
+"""
+
+FRAMEWORK = r"""
+import pkgutil
+import stuart_bt
+for info in pkgutil.walk_packages(stuart_bt.__path__, "stuart_bt.", onerror=lambda name: None):
+    try:
+        __import__(info.name)
+    except Exception:
+        pass  # a missing optional dependency: the attempt is recorded all the same
+from stuart_bt.clock import ScaledClock
+from stuart_bt.events import EventStream
+from stuart_bt.daemon.supervisor import Supervisor
+with Supervisor("dry", ScaledClock(20), EventStream(ScaledClock(20))) as sup:
+    for family in sup.families:
+        assert sup.wait(sup.client(family).request("ping")).ok
+"""
+
+
+def imports_of(tmp_path: Path, name: str, mode: str, target: str, *rest: str) -> set[str]:
+    """Every module the process asked for; it gets stdin EOF at once (daemons then exit)."""
+    record = tmp_path / f"{name}.imports"
+    subprocess.run([sys.executable, "-c", RECORDER, str(record), mode, target, *rest], stdin=subprocess.DEVNULL,
+                   capture_output=True, timeout=60)
+    return set(record.read_text().split())
+
+
+def forbidden(modules: set[str], tops: tuple[str, ...]) -> list[str]:
+    return sorted(m for m in modules if m.split(".")[0].startswith(tops))
+
+
+def backends() -> list[tuple[str, str]]:
+    return [(family, backend) for family in FAMILIES
+            for backend in importlib.import_module(f"stuart_bt.skills.{family}").BACKENDS]
+
+
+@pytest.mark.parametrize("family, backend", backends())
+def test_a_daemon_never_imports_ros(tmp_path, family, backend):
+    modules = imports_of(tmp_path, f"{family}-{backend}", "daemon", f"stuart_bt.skills.{family}",
+                         "--backend", backend, "--clock", "wall")
+    assert "stuart_bt.skills.runtime" in modules  # the daemon really ran under the recorder
+    module_name = importlib.import_module(f"stuart_bt.skills.{family}").BACKENDS[backend].partition(":")[0]
+    assert module_name in modules
+    assert forbidden(modules, ROS) == []
+
+
+def test_the_framework_never_imports_a_vendor_sdk(tmp_path):
+    modules = imports_of(tmp_path, "framework", "code", FRAMEWORK)
+    assert {"stuart_bt.daemon.supervisor", "stuart_bt.daemon.client"} <= modules
+    assert forbidden(modules, VENDOR) == []
+
+
+def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
+    modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
+    assert forbidden(modules, ROS) == ["rosidl_probe_absent"]

@@ -1,0 +1,201 @@
+"""The wire protocol, byte for byte: what a daemon prints for what it is sent (docs/protocol.md)."""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import subprocess
+import sys
+import time
+from typing import Any
+
+import pytest
+
+from stuart_bt.catalogue import FAMILIES
+from stuart_bt.clock import ScaledClock
+from stuart_bt.daemon import protocol as p
+
+FAMILY_COMMANDS = {"loco": ["navigate", "turn"], "tts": ["say"], "gesture": ["play"],
+                   "pick": ["pick", "release", "find"]}
+
+
+class Wire:
+    """One dry daemon on raw pipes: we write lines, we read every line it prints."""
+
+    def __init__(self, family: str, factor: float = 20.0) -> None:
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", f"stuart_bt.skills.{family}", "--backend", "dry",
+             "--clock", ScaledClock(factor).spec(), "--heartbeat", "0.05"],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self._buffer = b""
+        self.seen: list[dict[str, Any]] = []
+        self.ready = self.next(lambda m: m.get("type") == "ready")
+
+    def send(self, line: bytes | dict[str, Any]) -> None:
+        self.proc.stdin.write(line if isinstance(line, bytes) else p.encode(line))
+        self.proc.stdin.flush()
+
+    def next(self, match: Any, timeout: float = 3.0) -> dict[str, Any]:
+        """The next message (heartbeats included) that ``match`` accepts; earlier ones land in ``seen``."""
+        deadline = time.monotonic() + timeout
+        while True:
+            while b"\n" in self._buffer:
+                raw, self._buffer = self._buffer.split(b"\n", 1)
+                message = json.loads(raw)
+                self.seen.append(message)
+                if match(message):
+                    return message
+            remaining = deadline - time.monotonic()
+            assert remaining > 0, f"no matching line within {timeout} s; saw {self.seen[-5:]}"
+            if select.select([self.proc.stdout], [], [], remaining)[0]:
+                chunk = os.read(self.proc.stdout.fileno(), 1 << 20)
+                assert chunk, f"daemon closed its output; saw {self.seen[-5:]}"
+                self._buffer += chunk
+
+    def reply(self, request_id: str | None, *types: str, timeout: float = 3.0) -> dict[str, Any]:
+        types = types or ("done", "error")
+        return self.next(lambda m: m.get("id") == request_id and m.get("type") in types, timeout)
+
+    def replies_to(self, request_id: str) -> list[str]:
+        return [m["type"] for m in self.seen if m.get("id") == request_id]
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        self.proc.wait(5)
+        self.proc.stdout.close()
+        self.proc.stderr.close()
+
+
+@pytest.fixture
+def wire(request: pytest.FixtureRequest):
+    daemons: list[Wire] = []
+
+    def start(family: str) -> Wire:
+        daemons.append(Wire(family))
+        return daemons[-1]
+
+    yield start
+    for daemon in daemons:
+        daemon.close()
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_ready_line_names_family_backend_pid_protocol_and_commands(wire, family):
+    daemon = wire(family)
+    assert daemon.ready == {
+        "type": "ready", "family": family, "backend": "dry", "pid": daemon.proc.pid, "protocol": 1,
+        "commands": ["ping", "stop", "cancel", "state", "shutdown", *FAMILY_COMMANDS[family]],
+    }
+
+
+def test_ping_is_done_at_once_with_the_clock_time(wire):
+    daemon = wire("tts")
+    daemon.send({"id": "r1", "cmd": "ping"})
+    done = daemon.reply("r1")
+    assert done["type"] == "done" and isinstance(done["result"]["t"], float)
+    assert daemon.replies_to("r1") == ["done"]
+
+
+def test_a_walk_is_accepted_then_reports_progress_then_is_done(wire):
+    loco = wire("loco")
+    loco.send({"id": "r7", "cmd": "navigate", "args": {"pose": {"x": 2.0, "y": 0.0, "yaw": None}}})
+    done = loco.reply("r7")
+    trace = loco.replies_to("r7")
+    assert trace[0] == "accepted" and trace[-1] == "done" and set(trace[1:-1]) == {"progress"}
+    assert len(trace) >= 4  # 4 s of clock time: a progress line about every 0.5 s
+    first = next(m for m in loco.seen if m.get("id") == "r7")
+    assert first["data"] == {"duration": 4.0}
+    progress = [m["data"] for m in loco.seen if m.get("id") == "r7" and m["type"] == "progress"]
+    assert all(0.0 <= d["pose"]["x"] <= 2.0 for d in progress)
+    assert done["result"] == {"pose": {"x": 2.0, "y": 0.0, "yaw": 0.0}, "marker": None, "distance": 2.0}
+
+
+def test_an_error_reply_carries_code_reason_and_vendor_code(wire):
+    gesture = wire("gesture")
+    gesture.send({"id": "g1", "cmd": "play", "args": {"name": "hig five"}})
+    assert gesture.reply("g1") == {"id": "g1", "type": "error", "code": "unknown_gesture",
+                                   "reason": "no gesture 'hig five' (did you mean 'high five'?)", "vendor_code": 7402}
+    assert gesture.replies_to("g1") == ["error"]  # rejected before anything moved: no accepted
+
+
+def test_heartbeats_count_up_and_carry_the_backend_state(wire):
+    loco = wire("loco")
+    beats = [loco.next(lambda m: m.get("type") == "heartbeat") for _ in range(3)]
+    assert [b["seq"] for b in beats] == [beats[0]["seq"], beats[0]["seq"] + 1, beats[0]["seq"] + 2]
+    assert beats[-1]["state"] == {"pose": {"x": 0.0, "y": 0.0, "yaw": 0.0}, "moving": False}
+
+
+def test_an_utterance_cannot_smuggle_in_a_second_command(wire):
+    tts = wire("tts")
+    text = 'Hello\n{"id":"x","cmd":"stop"}\n'
+    line = p.encode(p.request("s1", "say", {"text": text}))
+    assert line.count(b"\n") == 1  # the newlines travel escaped inside the string
+    tts.send(line)
+    done = tts.reply("s1")
+    assert done["type"] == "done" and done["result"]["text"] == text
+    assert tts.replies_to("x") == []  # nobody saw a command "x"
+    tts.send({"id": "st", "cmd": "state"})
+    assert tts.reply("st")["result"]["spoken"] == [text]
+
+
+@pytest.mark.parametrize("line, request_id, reason", [
+    (b"hello daemon\n", None, "not JSON"),
+    (b"[1, 2]\n", None, "expected a JSON object, got list"),
+    (b'{"cmd": "ping"}\n', None, "request needs a non-empty string 'id'"),
+    (b'{"id": "b4"}\n', "b4", "request needs a string 'cmd'"),
+    (b'{"id": "b5", "cmd": "ping", "args": [1]}\n', "b5", "'args' must be an object, got list"),
+    (b"\xff\xfe\n", None, "not JSON"),
+])
+def test_a_garbage_line_gets_bad_request_and_the_daemon_carries_on(wire, line, request_id, reason):
+    loco = wire("loco")
+    loco.send(line)
+    error = loco.reply(request_id)
+    assert error["code"] == "bad_request" and reason in error["reason"]
+    loco.send({"id": "after", "cmd": "ping"})
+    assert loco.reply("after")["type"] == "done"
+
+
+def test_bad_arguments_are_rejected_with_what_is_wrong(wire):
+    loco = wire("loco")
+    loco.send({"id": "n1", "cmd": "navigate", "args": {"pose": {"x": "far", "y": 0}}})
+    assert loco.reply("n1")["reason"] == "navigate pose: 'x' must be a finite number, got 'far'"
+    loco.send({"id": "n2", "cmd": "navigate", "args": {"pose": {"x": 1, "y": 0}, "tolerence": 0.2}})
+    assert "unknown argument 'tolerence' (did you mean 'tolerance'?)" in loco.reply("n2")["reason"]
+    loco.send({"id": "n3", "cmd": "navigate", "args": {}})
+    assert loco.reply("n3")["reason"] == "navigate: give exactly one of pose, relative (got none)"
+
+
+def test_an_unknown_command_is_answered_with_a_suggestion(wire):
+    loco = wire("loco")
+    loco.send({"id": "u1", "cmd": "navgate", "args": {}})
+    assert loco.reply("u1") == {"id": "u1", "type": "error", "code": "unknown_command",
+                                "reason": "loco daemon has no command 'navgate' (did you mean 'navigate'?)"}
+
+
+def test_a_line_over_one_mebibyte_is_rejected_unread(wire):
+    tts = wire("tts")
+    huge = json.dumps({"id": "big", "cmd": "say", "args": {"text": "a" * p.MAX_LINE}}).encode() + b"\n"
+    tts.send(huge)
+    error = tts.reply(None)
+    assert error["code"] == "bad_request" and "exceeds the 1048576-byte limit" in error["reason"]
+    tts.send({"id": "after", "cmd": "ping"})
+    assert tts.reply("after")["type"] == "done"
+    assert tts.replies_to("big") == []
+
+
+def test_line_buffer_joins_chunks_and_drops_oversize_lines():
+    lines = p.LineBuffer(limit=10)
+    assert lines.feed(b'{"a"') == []
+    assert lines.feed(b':1}\n{"b":2}\n\n') == [b'{"a":1}', b'{"b":2}']
+    assert lines.feed(b"x" * 11) == [p.Oversize(11)]
+    assert lines.feed(b"yyyy\nok\n") == [b"ok"]  # the rest of the long line is skipped
+
+
+def test_encode_makes_one_line_and_decode_reads_it_back():
+    message = p.request("r1", "say", {"text": "line one\nline two \u2028 end"})
+    line = p.encode(message)
+    assert line.endswith(b"\n") and line.count(b"\n") == 1
+    assert p.decode(line) == message
+    with pytest.raises(p.ProtocolError, match="not JSON"):
+        p.decode(b"{nope")

@@ -1,0 +1,262 @@
+"""The supervisor: four dry daemons up, crashes and hangs noticed, restarts, clean shutdown."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from stuart_bt.clock import ScaledClock
+from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
+from stuart_bt.events import EventRecorder, EventStream
+
+FAKES = Path(__file__).parent / "fakes"
+CLOCK = ScaledClock(20)
+LONG_WALK = {"pose": {"x": 40.0, "y": 0.0, "yaw": None}}  # 80 s of clock time, 4 s wall
+
+
+def children_of(pid: int) -> dict[int, str]:
+    """Child pid -> process state letter (``Z`` = zombie), from /proc."""
+    found = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+            except OSError:
+                continue
+            state, ppid = stat.rpartition(")")[2].split()[:2]
+            if int(ppid) == pid:
+                found[int(entry.name)] = state
+    return found
+
+
+def our_new_children(before: dict[int, str]) -> dict[int, str]:
+    """Children of this test process that were not there before (other tests may own some)."""
+    return {pid: state for pid, state in children_of(os.getpid()).items() if pid not in before}
+
+
+def poll_at_20hz(sup: Supervisor, until, timeout: float = 3.0) -> float:
+    """Poll like an executor ticking at 20 Hz until ``until()``; returns when it became true."""
+    deadline = time.monotonic() + timeout
+    while not until():
+        assert time.monotonic() < deadline, "condition not reached in time"
+        time.sleep(0.05)
+        sup.poll()
+    return time.monotonic()
+
+
+@pytest.fixture
+def stream():
+    return EventStream(CLOCK)
+
+
+@pytest.fixture
+def recorder(stream):
+    return EventRecorder(stream)
+
+
+@pytest.fixture
+def make(stream, tmp_path):
+    made: list[Supervisor] = []
+
+    def make(**kwargs) -> Supervisor:
+        kwargs.setdefault("run_dir", tmp_path)
+        made.append(Supervisor(kwargs.pop("backend", "dry"), CLOCK, stream, **kwargs))
+        return made[-1]
+
+    yield make
+    for sup in made:
+        for family in sup.families:  # a test may leave a daemon SIGSTOPped
+            if sup.pid(family):
+                try:
+                    os.kill(sup.pid(family), signal.SIGCONT)
+                except ProcessLookupError:
+                    pass
+        sup.shutdown()
+
+
+def states(recorder: EventRecorder, family: str) -> list[str]:
+    return [e.data["state"] for e in recorder.of_kind("daemon_state") if e.data["family"] == family]
+
+
+def test_start_brings_up_the_four_dry_daemons(make, recorder):
+    before = children_of(os.getpid())
+    sup = make()
+    sup.start()
+    assert {f: sup.phase(f) for f in sup.families} == {f: "ready" for f in ("loco", "tts", "gesture", "pick")}
+    assert sorted(our_new_children(before)) == sorted(sup.pid(f) for f in sup.families)
+    for family in sup.families:
+        assert states(recorder, family) == ["starting", "ready"]
+        assert sup.client(family).ready["pid"] == sup.pid(family)
+
+
+def test_commands_and_replies_are_events_heartbeats_only_update_state(make, recorder):
+    sup = make(families=("loco",))
+    sup.start()
+    loco = sup.client("loco")
+    ping = sup.wait(loco.request("ping", {}, path="tour/check"))
+    assert ping.ok
+    command, reply = [e for e in recorder.events if e.kind in ("command", "daemon")]
+    assert (command.path, command.data) == ("tour/check", {"family": "loco", "id": ping.id, "cmd": "ping", "args": {}})
+    assert (reply.path, reply.data["type"], reply.data["id"]) == ("tour/check", "done", ping.id)
+    poll_at_20hz(sup, lambda: loco.last_heartbeat is not None and loco.state)
+    assert loco.state == {"pose": {"x": 0.0, "y": 0.0, "yaw": 0.0}, "moving": False}
+    assert not [e for e in recorder.events if e.data.get("type") == "heartbeat"]
+
+
+def test_kill_9_mid_walk_fails_the_walk_fast_and_the_daemon_comes_back(make, recorder):
+    sup = make()
+    sup.start()
+    loco = sup.client("loco")
+    walk = loco.request("navigate", LONG_WALK)
+    poll_at_20hz(sup, lambda: walk.status == "accepted")
+    old_pid = sup.pid("loco")
+    os.kill(old_pid, signal.SIGKILL)
+    killed_at = time.monotonic()
+    poll_at_20hz(sup, lambda: walk.finished)
+    assert (walk.error_code, walk.reason) == ("daemon_died", "loco daemon exited with signal SIGKILL")
+    assert walk.finished_at - killed_at < 0.1
+    refused = loco.request("ping")  # while it is down: refused at once, not left hanging
+    assert (refused.error_code, refused.reason) == ("daemon_down", "loco daemon exited with signal SIGKILL")
+    poll_at_20hz(sup, lambda: sup.phase("loco") == "ready")
+    assert sup.pid("loco") != old_pid
+    assert states(recorder, "loco") == ["starting", "ready", "died", "starting", "ready"]
+    turn = sup.wait(loco.request("turn", {"angle": 0.5}))
+    assert turn.ok and turn.result["pose"]["yaw"] == 0.5
+
+
+def test_a_stopped_daemon_is_declared_hung_killed_and_restarted(make, recorder):
+    sup = make(families=("loco", "tts"), heartbeat_timeout=0.5)
+    sup.start()
+    walk = sup.client("loco").request("navigate", LONG_WALK)
+    sup.wait(sup.client("tts").request("ping"))
+    old_pid = sup.pid("loco")
+    os.kill(old_pid, signal.SIGSTOP)
+    stopped_at = time.monotonic()
+    poll_at_20hz(sup, lambda: walk.finished)
+    assert (walk.error_code, walk.reason) == ("daemon_hung", "loco daemon sent no heartbeat for 0.5 s")
+    assert 0.4 < walk.finished_at - stopped_at < 1.0
+    assert sup.phase("tts") == "ready"  # the others carry on
+    poll_at_20hz(sup, lambda: sup.phase("loco") == "ready")
+    assert old_pid not in children_of(os.getpid())  # killed and reaped
+    assert states(recorder, "loco")[-3:] == ["hung", "starting", "ready"]
+
+
+def test_restarts_back_off_exponentially(make, recorder):
+    sup = make(families=("gesture",), restart_backoff=(0.1, 5.0))
+    sup.start()
+    for _ in range(2):
+        os.kill(sup.pid("gesture"), signal.SIGKILL)
+        poll_at_20hz(sup, lambda: sup.phase("gesture") == "down")
+        poll_at_20hz(sup, lambda: sup.phase("gesture") == "ready")
+    delays = [e.data["restart_in"] for e in recorder.of_kind("daemon_state") if e.data["state"] == "died"]
+    assert delays == [0.1, 0.2]
+
+
+def test_a_daemon_that_never_sends_ready_fails_the_start_with_its_stderr(make):
+    before = children_of(os.getpid())
+    sup = make(families=("loco", "tts"), handshake_timeout=0.5,
+               programs={"loco": [sys.executable, str(FAKES / "never_ready.py")]})
+    started = time.monotonic()
+    with pytest.raises(DaemonStartError) as caught:
+        sup.start()
+    assert time.monotonic() - started < 1.5
+    assert str(caught.value) == ("loco daemon failed to start: no READY within 0.5 s "
+                                 "(stderr: never_ready: connecting to a robot that never answers)")
+    assert our_new_children(before) == {}  # the healthy tts daemon was shut down too
+
+
+def test_an_unknown_backend_fails_the_start_naming_the_valid_ones(make):
+    sup = make(backend="unitre", families=("pick",))
+    with pytest.raises(DaemonStartError, match=r"^pick daemon failed to start: exited with code 2 before READY "
+                                               r"\(stderr: .*unknown backend 'unitre'.*valid backends: dry\)$"):
+        sup.start()
+
+
+def test_stop_all_stops_a_running_walk_where_it_is(make):
+    sup = make()
+    sup.start()
+    loco = sup.client("loco")
+    walk = loco.request("navigate", {"pose": {"x": 10.0, "y": 0.0, "yaw": None}})
+    poll_at_20hz(sup, lambda: walk.progress is not None)
+    stops = sup.stop_all()
+    assert sorted(s.family for s in stops) == ["gesture", "loco", "pick", "tts"]
+    for stop in stops:
+        assert sup.wait(stop, timeout=2.0).ok
+    assert walk.error_code == "stopped"
+    frozen = walk.result["pose"]
+    assert 0.0 < frozen["x"] < 10.0
+    stopped_at = time.monotonic()
+    poll_at_20hz(sup, lambda: loco.last_heartbeat > stopped_at)
+    assert loco.state == {"pose": frozen, "moving": False}
+
+
+def test_shutdown_reaps_every_daemon_even_a_stopped_one(make, recorder):
+    before = children_of(os.getpid())
+    sup = make(heartbeat_timeout=5.0)
+    sup.start()
+    walk = sup.client("loco").request("navigate", LONG_WALK)
+    speech = sup.client("tts").request("say", {"text": "this sentence will not be finished " * 5})
+    sup.wait(sup.client("pick").request("ping"))
+    os.kill(sup.pid("gesture"), signal.SIGSTOP)
+    started = time.monotonic()
+    sup.shutdown(timeout=0.3)
+    assert time.monotonic() - started < 2.0
+    assert our_new_children(before) == {}  # nothing left, not even zombies
+    assert walk.error_code == speech.error_code == "stopped"
+    assert all(states(recorder, f)[-1] == "stopped" for f in sup.families)
+    sup.shutdown()  # idempotent
+
+
+def test_garbage_from_a_daemon_is_a_warning_and_is_otherwise_ignored(make, recorder):
+    sup = make(families=("loco",), programs={"loco": [sys.executable, str(FAKES / "garbage_daemon.py")]})
+    sup.start()
+    loco = sup.client("loco")
+    poll_at_20hz(sup, lambda: loco.state.get("seq", 0) >= 3)
+    warnings = [e.data["message"] for e in recorder.of_kind("warning")]
+    assert len(warnings) == 4
+    assert "not protocol JSON" in warnings[0] and "Vendor SDK" in warnings[0]
+    assert "expected a JSON object, got list" in warnings[1]
+    assert "unknown type 'mystery'" in warnings[2]
+    assert "not protocol JSON" in warnings[3]
+    assert sup.phase("loco") == "ready"
+
+
+def test_wait_gives_the_request_back_unfinished_after_its_timeout(make):
+    sup = make(families=("loco",))
+    sup.start()
+    walk = sup.wait(sup.client("loco").request("navigate", LONG_WALK), timeout=0.1)
+    assert not walk.finished and walk.status == "accepted"
+
+
+def test_asking_for_a_family_that_is_not_there_suggests_one(make):
+    sup = make(families=("loco",))
+    with pytest.raises(KeyError, match="no 'lcoo' daemon \\(did you mean 'loco'\\?\\)"):
+        sup.client("lcoo")
+
+
+def test_a_killed_tree_process_leaves_no_daemon_running(tmp_path):
+    tree = subprocess.Popen([sys.executable, "-c", (
+        "import sys, time\n"
+        "from stuart_bt.clock import ScaledClock\n"
+        "from stuart_bt.events import EventStream\n"
+        "from stuart_bt.daemon.supervisor import Supervisor\n"
+        f"sup = Supervisor('dry', ScaledClock(20), EventStream(ScaledClock(20)), families=('loco',), run_dir={str(tmp_path)!r})\n"
+        "sup.start()\n"
+        "sup.client('loco').request('navigate', {'pose': {'x': 40.0, 'y': 0.0}})\n"
+        "print(sup.pid('loco'), flush=True)\n"
+        "time.sleep(60)\n")], stdout=subprocess.PIPE, text=True)
+    daemon_pid = int(tree.stdout.readline())
+    tree.kill()
+    tree.wait()
+    deadline = time.monotonic() + 1.0
+    while Path(f"/proc/{daemon_pid}").exists() and Path(f"/proc/{daemon_pid}/stat").read_text().split()[2] != "Z":
+        assert time.monotonic() < deadline, "the daemon outlived its tree process"
+        time.sleep(0.02)
+    log = (tmp_path / "loco.stderr.log").read_text()
+    assert "Traceback" not in log
