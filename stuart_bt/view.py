@@ -24,32 +24,11 @@ from rich.text import Text
 from rich.tree import Tree
 
 from .events import Event, EventStream
+from .tree.render import label
 from .tree.spec import NodeSpec, TreeSpec
 
 STATUS_STYLE = {"SUCCESS": "green", "FAILURE": "bold red", "RUNNING": "bold yellow", "INVALID": "dim"}
 STATUS_MARK = {"SUCCESS": "✔", "FAILURE": "✘", "RUNNING": "▶", "INVALID": "·"}
-GLYPH = {"sequence": "→", "selector": "?", "parallel": "⇉"}
-SUMMARY_PARAMS = ("marker", "x", "y", "dx", "dy", "angle", "degrees", "object", "name", "sequence", "file",
-                  "text", "seconds", "expr", "key", "message", "times", "condition", "policy")
-
-
-def describe(node: NodeSpec, width: int = 48) -> str:
-    """``kind name key=value ...``: one short line per node."""
-    head = GLYPH.get(node.kind, "")
-    label = f"{head} {node.name}".strip() if head else node.kind
-    if not head and node.name != node.kind:
-        label += f" {node.name}"
-    shown = []
-    for key in SUMMARY_PARAMS:
-        if key in node.params and not (key == "name" and node.params[key] == node.name):
-            value = node.params[key]
-            text = value if isinstance(value, str) else repr(value)
-            if len(text) > width:
-                text = text[: width - 1] + "…"
-            shown.append(f"{key}={text}")
-    return " ".join([label, *shown])
-
-
 def _interesting(event: Event) -> str | None:
     d = event.data
     if event.kind == "leaf":
@@ -143,11 +122,12 @@ class LiveView(_Base):
 
     def _tree(self, node: NodeSpec, statuses: dict[str, str], parent: Tree | None = None) -> Tree:
         status = statuses.get(node.path, "INVALID")
-        label = Text(f"{STATUS_MARK[status]} {describe(node)}", style=STATUS_STYLE[status])
-        branch = Tree(label) if parent is None else parent.add(label)
+        text = Text(f"{STATUS_MARK[status]} {label(node)}", style=STATUS_STYLE[status])
+        branch = Tree(text) if parent is None else parent.add(text)
         collapse = status in ("SUCCESS", "INVALID") and node is not self.spec.root and node.children
         if collapse:
-            branch.add(Text(f"… {sum(1 for _ in node.walk()) - 1} nodes", style="dim"))
+            hidden = sum(1 for _ in node.walk()) - 1
+            branch.add(Text(f"… {hidden} node{'' if hidden == 1 else 's'}", style="dim"))
         else:
             for child in node.children:
                 self._tree(child, statuses, branch)

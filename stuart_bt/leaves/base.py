@@ -41,6 +41,8 @@ class DaemonRequest(Protocol):
 
 
 class DaemonClientPort(Protocol):
+    connected: bool  # a daemon process is attached (it may still be starting up)
+
     def request(self, cmd: str, args: dict[str, Any], path: str | None = None) -> DaemonRequest: ...
 
     def cancel(self, request: DaemonRequest) -> Any: ...
@@ -199,13 +201,25 @@ class SkillLeaf(Leaf):
         self.request = None
         if self.ctx.daemons is None:
             raise LeafFailure(f"no daemons are running for the '{self.family}' skill family")
-        cmd, args = self.command()
-        self.request = self.ctx.daemons.client(self.family).request(cmd, args, path=self.spec_path)
+        self._command = self.command()
+        self._send_when_connected()
         return None
 
+    def _send_when_connected(self) -> None:
+        """Send now, or (while the daemon restarts after a crash) on a later tick, within the
+        leaf's timeout: a leaf that starts during a restart waits instead of failing."""
+        assert self.ctx.daemons is not None
+        client = self.ctx.daemons.client(self.family)
+        if client.connected:
+            cmd, args = self._command
+            self.request = client.request(cmd, args, path=self.spec_path)
+
     def step(self) -> Status:
+        if self.request is None:
+            self._send_when_connected()
+            if self.request is None:
+                return Status.RUNNING
         request = self.request
-        assert request is not None
         if request.status == "error":
             code = request.error_code or "error"
             self.failure_reason = f"{code}: {request.reason}" if request.reason else code
