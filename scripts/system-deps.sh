@@ -3,18 +3,17 @@
 # Idempotent and quick when everything is present. Needs root (or sudo) to install.
 set -euo pipefail
 
-# package -> a file or command that shows it is installed
-declare -A NEEDS=(
-  [graphviz]=dot          # stuart-bt show --format svg|png
-)
+have_cmd() { command -v "$1" >/dev/null 2>&1; }
+have_lib() { ldconfig -p 2>/dev/null | grep -q "$1"; }
 
 missing=()
-for pkg in "${!NEEDS[@]}"; do
-  command -v "${NEEDS[$pkg]}" >/dev/null 2>&1 || missing+=("$pkg")
-done
+have_cmd dot        || missing+=(graphviz)          # stuart-bt show --format svg|png
+have_cmd espeak-ng  || missing+=(espeak-ng)         # speech audio (tts daemon, sim backend)
+have_lib libEGL.so.1      || missing+=(libegl1)     # MuJoCo headless rendering (MUJOCO_GL=egl)
+have_lib libEGL_mesa.so.0 || missing+=(libegl-mesa0 libgl1-mesa-dri)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
-if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif command -v sudo >/dev/null; then SUDO="sudo"; else
+if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif have_cmd sudo; then SUDO="sudo"; else
   echo "system-deps: missing ${missing[*]} and no root/sudo to install them; related tests will skip" >&2
   exit 0
 fi

@@ -49,7 +49,12 @@ def cmd_show(args: argparse.Namespace) -> int:
         fmt = Path(args.output).suffix.lstrip(".") if args.output else "unicode"
         if fmt not in SHOW_FORMATS:
             raise UserError(f"cannot tell the format from {args.output!r}; pass --format")
-    out = render(spec, fmt)
+    if fmt == "yaml":  # paths inside must stay right from where the file is written
+        from .tree.export import to_yaml
+
+        out: str | bytes = to_yaml(spec, Path(args.output).parent if args.output else Path.cwd())
+    else:
+        out = render(spec, fmt)
     if args.output:
         Path(args.output).parent.mkdir(parents=True, exist_ok=True)
         if isinstance(out, bytes):
@@ -80,14 +85,16 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UserError("--rate and --speed must be positive")
     session = Session(spec, options)
     view = make_view(args.view, spec, session.events)
-    interrupted: list[str] = []
+    interrupted: list[int] = []
 
     def on_signal(signum: int, _frame: Any) -> None:
-        name = signal.Signals(signum).name
-        if interrupted:  # second Ctrl-C: give up waiting, the finally block still stops the daemons
-            raise KeyboardInterrupt
-        interrupted.append(name)
-        session.request_stop(f"interrupted ({name})")
+        # Never raise here: the daemons must still be stopped and reaped. A second signal only
+        # shortens the waiting for their acknowledgements.
+        if interrupted:
+            session.hurry()
+            return
+        interrupted.append(signum)
+        session.request_stop(f"interrupted ({signal.Signals(signum).name})")
 
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
@@ -106,7 +113,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"report: {args.report}", file=sys.stderr)
     if outcome.status == "SUCCESS":
         return EXIT_OK
-    return EXIT_INTERRUPTED if interrupted else EXIT_FAILED
+    return 128 + interrupted[0] if interrupted else EXIT_FAILED
 
 
 def cmd_bench(args: argparse.Namespace) -> int:

@@ -62,6 +62,7 @@ class Session:
         self.supervisor: Supervisor | None = None
         self.executor: Executor | None = None
         self.outcome: RunOutcome | None = None
+        self._hurry = False
         self._log_file: IO[str] | None = None
         self._log_writer: JsonlWriter | None = None
 
@@ -122,6 +123,11 @@ class Session:
         if self.executor is not None:
             self.executor.request_stop(reason)
 
+    def hurry(self) -> None:
+        """Shorten the waits of stopping and shutting down (a second Ctrl-C); daemons still get
+        stop and are still reaped."""
+        self._hurry = True
+
     def report(self) -> dict[str, Any]:
         outcome = self.outcome
         return self.recorder.build(
@@ -136,7 +142,7 @@ class Session:
 
     def close(self) -> None:
         if self.supervisor is not None:
-            self.supervisor.shutdown()
+            self.supervisor.shutdown(timeout=0.3 if self._hurry else 2.0)
         if self._log_writer is not None:
             self._log_writer.close()
         if self._log_file is not None:
@@ -163,6 +169,8 @@ class Session:
         world = self.blackboard.world
         moved = world.pose.distance_to(new) > 0.01 or abs(math.remainder(new.yaw - world.pose.yaw, math.tau)) > 0.01
         world.pose = new
+        if self.supervisor is not None:  # a restarted loco daemon starts where the robot is
+            self.supervisor.options.setdefault("loco", {})["start_pose"] = new.to_dict()
         if moved:
             self.events.publish("pose", **new.to_dict())
 
@@ -180,7 +188,7 @@ class Session:
         """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""
         assert self.supervisor is not None
         for request in self.supervisor.stop_all():
-            self.supervisor.wait(request, timeout=1.0)
+            self.supervisor.wait(request, timeout=0.1 if self._hurry else 1.0)
 
 
 def needed_families(spec: TreeSpec) -> list[str]:

@@ -6,6 +6,7 @@ well-formed goals. Frames follow REP-103: map x forward, y left, yaw counter-clo
 
 from __future__ import annotations
 
+import math
 from abc import abstractmethod
 from dataclasses import dataclass
 from typing import Any
@@ -42,6 +43,15 @@ class NavigateGoal:
     marker: str | None
     tolerance: float
     yaw_tolerance: float
+
+
+def goal_pose(start: Pose, target: MapGoal | RelativeGoal) -> tuple[float, float, float | None]:
+    """Map-frame ``(x, y, yaw)`` of a goal; a relative goal is taken from ``start``'s body frame."""
+    if isinstance(target, MapGoal):
+        return target.x, target.y, target.yaw
+    cos, sin = math.cos(start.yaw), math.sin(start.yaw)
+    return (start.x + target.dx * cos - target.dy * sin, start.y + target.dx * sin + target.dy * cos,
+            start.yaw + target.dyaw)
 
 
 class LocoBackend(Backend):

@@ -16,7 +16,7 @@ from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import TimedActivity
 from stuart_bt.world import Pose
 
-from .backend import LocoBackend, MapGoal, NavigateGoal
+from .backend import LocoBackend, NavigateGoal, goal_pose
 
 WALK_SPEED = 0.5  # m/s
 TURN_RATE = 0.8  # rad/s
@@ -51,14 +51,7 @@ def turn_segment(phase: str, start: Pose, angle: float) -> Segment:
 
 def plan_navigate(start: Pose, goal: NavigateGoal) -> list[Segment]:
     """Segments from ``start`` to the goal, skipping moves already within tolerance."""
-    target = goal.target
-    if isinstance(target, MapGoal):
-        gx, gy, gyaw = target.x, target.y, target.yaw
-    else:
-        cos, sin = math.cos(start.yaw), math.sin(start.yaw)
-        gx = start.x + target.dx * cos - target.dy * sin
-        gy = start.y + target.dx * sin + target.dy * cos
-        gyaw = start.yaw + target.dyaw
+    gx, gy, gyaw = goal_pose(start, goal.target)
     segments: list[Segment] = []
     here = start
     distance = math.hypot(gx - start.x, gy - start.y)

@@ -43,6 +43,7 @@ ERROR_CODES: dict[str, str] = {
     "unreachable": "the goal is out of reach; nothing moved",
     "not_found": "no such object, marker or target",
     "unknown_gesture": "the gesture name is not in the library",
+    "blocked": "something stayed in the robot's way longer than allowed; the robot stopped",
     "not_holding": "release asked for, but the arm holds nothing",
     "already_holding": "pick asked for, but the robot already holds something",
     "backend_error": "the backend (simulator, vendor SDK) failed; vendor_code may say more",

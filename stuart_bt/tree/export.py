@@ -10,6 +10,7 @@ parameter is written in the short form (``speak: Hello``), so the output stays r
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import Any
 
 import yaml
@@ -27,10 +28,11 @@ class _Dumper(yaml.SafeDumper):
         super().increase_indent(flow, False)
 
 
-def to_yaml(spec: TreeSpec) -> str:
-    """The expanded tree as YAML text; relative paths are relative to ``spec.file``'s folder."""
+def to_yaml(spec: TreeSpec, relative_to: str | os.PathLike[str] | None = None) -> str:
+    """The expanded tree as YAML text. Relative paths (markers, gesture files) are written
+    relative to ``relative_to`` (the folder the text will be saved in), else ``spec.file``'s folder."""
     doc: dict[str, Any] = {}
-    base = base_dir_of(spec.file)
+    base = Path(relative_to) if relative_to is not None else base_dir_of(spec.file)
     if spec.description is not None:
         doc["description"] = spec.description
     if spec.markers_file is not None:

@@ -54,6 +54,11 @@ def render(spec: TreeSpec, fmt: str, statuses: dict[str, str] | None = None) -> 
 
 def label(node: NodeSpec, ascii_only: bool = False) -> str:
     """One-line description: glyph or kind, name when it differs from the kind, key params."""
+    text = _label(node, ascii_only)
+    return text.encode("ascii", "backslashreplace").decode("ascii") if ascii_only else text
+
+
+def _label(node: NodeSpec, ascii_only: bool) -> str:
     params = " ".join(f"{k}={_value(v, ascii_only)}" for k, v in node.params.items())
     if node.kind in COMPOSITES:
         text = f"{GLYPHS[node.kind]} {node.name}"

@@ -137,6 +137,8 @@ def read_text(text: str, file: str) -> Source:
         _Measure(file, errors).visit(root, 1)
     except _Limit as e:
         return Source(file, None, [*errors, TreeError(location(file, e.mark), e.message)])
+    if any("unsupported YAML tag" in e.message for e in errors):
+        return Source(file, None, errors)  # the tagged values cannot be read: report only the tags
     return Source(file, root, errors)
 
 
@@ -165,6 +167,18 @@ def _syntax_error(e: yaml.MarkedYAMLError, text: str, file: str) -> TreeError:
     return TreeError(location(file, mark), f"YAML syntax error: {detail}")
 
 
+def tag_problem(node: Node) -> str | None:
+    """Why an explicit tag is not allowed, or None: only plain YAML data types are accepted
+    (a ``!!python/...`` tag, or any application tag, never reaches a constructor)."""
+    if isinstance(node, MappingNode):
+        ok = node.tag == _MAP_TAG
+    elif isinstance(node, SequenceNode):
+        ok = node.tag == _SEQ_TAG
+    else:
+        ok = node.tag in SafeConstructor.yaml_constructors and node.tag not in _COLLECTION_TAGS
+    return None if ok else f"unsupported YAML tag {node.tag!r}; tree files hold plain data only"
+
+
 class _Measure:
     """Walk the composed graph once: expanded size and depth (aliases counted each time they
     are used), recursive aliases, and duplicate keys in every mapping."""
@@ -175,6 +189,11 @@ class _Measure:
         self.done: dict[int, tuple[int, int]] = {}  # id(node) -> (expanded size, height)
         self.active: set[int] = set()
 
+    def _check_tag(self, node: Node) -> None:
+        problem = tag_problem(node)
+        if problem:
+            self.errors.append(TreeError(location(self.file, node), problem))
+
     def visit(self, node: Node, depth: int) -> tuple[int, int]:
         key = id(node)
         if key in self.active:
@@ -184,6 +203,7 @@ class _Measure:
         else:
             if depth > MAX_DEPTH:
                 raise _Limit(node.start_mark, f"nesting deeper than {MAX_DEPTH} levels")
+            self._check_tag(node)
             self.active.add(key)
             size, height = 1, 1
             for child in _children(node):
