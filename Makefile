@@ -16,11 +16,11 @@ $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench]"
+	$(PIP) -e ".[test,bench,sim,ik]"
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,ros]"
+	$(PIP) -e ".[test,bench,sim,ik,ros]"
 	touch $@
 
 system-deps:
