@@ -352,9 +352,12 @@ def test_control_characters():
     assert one_error('root: {speak: "a\x07"}\n') == "t.yaml:1:17: control character U+0007 is not allowed in YAML"
 
 
-def test_python_tags_are_refused():
-    assert "t.yaml:1:15: t: unsupported YAML tag 'tag:yaml.org,2002:python/object:os.system'" in errors(
-        "root: {speak: !!python/object:os.system hi}\n")
+def test_python_tags_are_refused_wherever_they_stand():
+    message = "unsupported YAML tag 'tag:yaml.org,2002:python/object:os.system'; tree files hold plain data only"
+    assert errors("root: {speak: !!python/object:os.system hi}\n") == [f"t.yaml:1:15: {message}"]
+    assert errors("root: !!python/object:os.system\n  speak: hi\n") == [f"t.yaml:1:7: {message}"]
+    assert errors("root: !custom {speak: hi}\n") == [
+        "t.yaml:1:7: unsupported YAML tag '!custom'; tree files hold plain data only"]
 
 
 def test_missing_tree_file(tmp_path):

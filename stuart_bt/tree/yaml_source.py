@@ -175,7 +175,8 @@ def tag_problem(node: Node) -> str | None:
     elif isinstance(node, SequenceNode):
         ok = node.tag == _SEQ_TAG
     else:
-        ok = node.tag in SafeConstructor.yaml_constructors and node.tag not in _COLLECTION_TAGS
+        ok = node.tag == MERGE_TAG or (node.tag in SafeConstructor.yaml_constructors
+                                       and node.tag not in _COLLECTION_TAGS)
     return None if ok else f"unsupported YAML tag {node.tag!r}; tree files hold plain data only"
 
 
