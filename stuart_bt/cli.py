@@ -7,6 +7,7 @@ traceback only appears with ``--debug``.
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 from pathlib import Path
@@ -105,8 +106,11 @@ def cmd_run(args: argparse.Namespace) -> int:
             finally:
                 view.stop()
     finally:
+        # Everything is stopped and reaped now. A standalone CLI keeps a handler that exits
+        # quietly (no KeyboardInterrupt traceback while it prints the summary); an in-process
+        # caller gets its own handlers back.
         for s, handler in previous.items():
-            signal.signal(s, handler)
+            signal.signal(s, handler if args.restore_signals else _exit_quietly)
     report = session.report()
     view.summary(report)
     if args.report:
@@ -149,6 +153,11 @@ def cmd_schema(args: argparse.Namespace) -> int:
 
 
 # -- plumbing ----------------------------------------------------------------------------------------
+def _exit_quietly(signum: int, _frame: Any) -> None:
+    sys.stdout.flush()
+    os._exit(128 + signum)
+
+
 SHOW_FORMATS = ("unicode", "ascii", "dot", "svg", "png", "yaml")
 
 
@@ -218,6 +227,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.restore_signals = argv is not None  # called from Python rather than as the stuart-bt program
     func: Callable[[argparse.Namespace], int] = args.func
     try:
         return func(args)
