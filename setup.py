@@ -18,7 +18,7 @@ setup(
     package_dir=package_dir,
     package_data={
         "stuart_bt.skills": ["*.json"],
-        "stuart_bt.sim": ["maps/*.json", "scenes/*.xml", "models/*.xml"],
+        "stuart_bt.sim": ["maps/*.json", "maps/*.png", "maps/*.yaml", "scenes/*.xml", "models/*.xml", "models/*.urdf"],
         "stuart_bt.tasks": ["*.yaml"],
     },
     include_package_data=True,

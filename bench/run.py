@@ -1,6 +1,10 @@
 """``python -m bench.run [--quick] [-o PATH] [--only NAME]``: run the benchmarks, print a table,
 write results JSON.
 
+With ``--only``, the figures of the benchmarks not run this time are carried over from the
+existing output file (``kept`` in the JSON says which, and when and how they were measured), so
+re-running one benchmark never loses the others' results.
+
 Each benchmark module exposes ``run(quick) -> list[Result]``; this module only schedules them
 and reports. Exit status: 0 when every benchmark ran (goals unmet are reported, not fatal: a
 loaded machine should not fail a build), 1 when one crashed, 2 for bad arguments.
@@ -20,12 +24,13 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import roundtrip, tick_overhead
+from . import ik, roundtrip, tick_overhead
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     tick_overhead.NAME: tick_overhead.run,
     roundtrip.NAME: roundtrip.run,
+    ik.NAME: ik.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "stuart-bt")
@@ -73,6 +78,31 @@ def table(results: list[Result]) -> str:
     return "\n".join(lines)
 
 
+def benchmark_of(result: dict[str, Any]) -> str:
+    return str(result.get("name", "")).split(".", 1)[0]
+
+
+def merge_previous(report: dict[str, Any], path: Path, selected: list[str]) -> None:
+    """Carry over from the report at ``path`` every figure (and error) of a benchmark that is
+    not in ``selected``; a missing or unreadable file carries nothing over."""
+    try:
+        previous = json.loads(path.read_text(encoding="utf-8"))
+        old_results = [r for r in previous.get("results", []) if benchmark_of(r) not in selected]
+        old_errors = {k: v for k, v in previous.get("errors", {}).items() if k not in selected}
+    except (OSError, ValueError, AttributeError, TypeError):
+        return
+    if not old_results and not old_errors:
+        return
+    # when each carried-over benchmark really ran: a figure kept twice keeps its first date
+    earlier = previous.get("kept", {}) if isinstance(previous.get("kept"), dict) else {}
+    this = {"from": previous.get("machine", {}).get("date"), "quick": previous.get("quick")}
+    names = sorted({benchmark_of(r) for r in old_results} | set(old_errors))
+    order = {name: i for i, name in enumerate(BENCHMARKS)}
+    report["results"] = sorted(old_results + report["results"], key=lambda r: order.get(benchmark_of(r), len(order)))
+    report["errors"] = {**old_errors, **report["errors"]}
+    report["kept"] = {name: earlier.get(name, this) for name in names}
+
+
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="python -m bench.run", description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="few repetitions: a smoke test, not a measurement")
@@ -106,14 +136,17 @@ def main(argv: list[str] | None = None) -> int:
         "results": [r.to_dict() for r in results],
         "errors": errors,
     }
+    if args.only:
+        merge_previous(report, args.output, selected)
     args.output.parent.mkdir(parents=True, exist_ok=True)
     args.output.write_text(json.dumps(report, indent=2) + "\n", encoding="utf-8")
     print(table(results))
     for name, message in errors.items():
         print(f"{name} FAILED: {message}", file=sys.stderr)
     unmet = [r.name for r in results if r.met is False]
+    kept = list(report.get("kept", {}))
     print(f"\n{len(results)} figures, {len(unmet)} goal(s) unmet{': ' + ', '.join(unmet) if unmet else ''}; "
-          f"written to {args.output}")
+          f"written to {args.output}{' (kept from before: ' + ', '.join(kept) + ')' if kept else ''}")
     return 1 if errors else 0
 
 

@@ -77,13 +77,16 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .view import make_view
 
     spec = _load(args.file, args.markers)
+    if args.rate <= 0 or (args.speed is not None and args.speed < 0):
+        raise UserError("--rate must be positive and --speed not negative")
+    if args.backend != "sim" and (args.record or args.viewer or args.map_out):
+        raise UserError("--record, --viewer and --map-out need --backend sim")
     options = RunOptions(
         backend=args.backend, rate=args.rate, speed=args.speed, start=args.start,
         report=Path(args.report) if args.report else None, log=Path(args.log) if args.log else None,
-        max_duration=args.max_duration,
+        max_duration=args.max_duration, seed=args.seed, viewer=args.viewer,
+        record=Path(args.record) if args.record else None, map_out=Path(args.map_out) if args.map_out else None,
     )
-    if args.rate <= 0 or args.speed <= 0:
-        raise UserError("--rate and --speed must be positive")
     session = Session(spec, options)
     view = make_view(args.view, spec, session.events)
     interrupted: list[int] = []
@@ -198,8 +201,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry",
                    help="dry: symbolic, no world (default); sim: MuJoCo; unitree: the robot")
     p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
-    p.add_argument("--speed", type=float, default=1.0,
-                   help="clock speed-up for dry runs (clock seconds per wall second, default 1)")
+    p.add_argument("--speed", type=float, default=None,
+                   help="dry: clock seconds per wall second (default 1); sim: cap on sim seconds per wall "
+                        "second (default 0: as fast as the tree keeps up; 1 with --viewer)")
+    p.add_argument("--seed", type=int, default=0, help="sim: seed that makes a run repeatable")
+    p.add_argument("--record", metavar="OUT.mp4|OUT.gif", help="sim: record the chase camera")
+    p.add_argument("--map-out", metavar="OUT.png", help="sim: draw the map with the path driven")
+    p.add_argument("--viewer", action="store_true", help="sim: open the interactive MuJoCo viewer")
     p.add_argument("--start", metavar="MARKER", help="marker the robot starts at (default: entrance)")
     p.add_argument("--report", metavar="OUT.json", help="write the run report")
     p.add_argument("--log", metavar="OUT.jsonl", help="write every event as JSON lines")

@@ -112,10 +112,14 @@ def clock_from_spec(spec: str | None) -> Clock:
     if not spec or spec == "wall":
         return WallClock()
     kind, _, rest = spec.partition(":")
+    if kind == "sim":  # the simulator's clock, read from the world server's shared clock file
+        from .sim.world.clock import SimClock
+
+        return SimClock(rest, driver=False)
     if kind == "scaled":
         epoch_text, _, factor_text = rest.partition(":")
         try:
             return ScaledClock(float(factor_text), float(epoch_text))
         except ValueError:
             pass
-    raise ValueError(f"bad clock spec {spec!r} (expected 'wall' or 'scaled:EPOCH:FACTOR')")
+    raise ValueError(f"bad clock spec {spec!r} (expected 'wall', 'scaled:EPOCH:FACTOR' or 'sim:PATH')")

@@ -36,7 +36,9 @@ BACKENDS = ("dry", "sim", "unitree")
 class RunOptions:
     backend: str = "dry"
     rate: float = 20.0
-    speed: float = 1.0  # clock seconds per wall second (dry backend: run faster than real time)
+    # dry: clock seconds per wall second (default 1). sim: the world's pace cap (default 0: as
+    # fast as the tree keeps up, in lockstep with the executor; 1.0 with the viewer).
+    speed: float | None = None
     start: str | None = None  # marker the robot starts at; default 'entrance' when the map has it
     report: Path | None = None
     log: Path | None = None
@@ -44,6 +46,11 @@ class RunOptions:
     daemon_options: dict[str, dict[str, Any]] = field(default_factory=dict)
     handshake_timeout: float = 20.0
     heartbeat_timeout: float = 1.0
+    seed: int = 0  # sim: makes a run repeatable
+    record: Path | None = None  # sim: chase-camera video (.mp4 or .gif)
+    record_fps: float = 10.0
+    viewer: bool = False  # sim: the interactive MuJoCo viewer
+    map_out: Path | None = None  # sim: PNG of the map with the path driven
 
 
 class Session:
@@ -55,11 +62,13 @@ class Session:
         self.options = options or RunOptions()
         if self.options.backend not in BACKENDS:
             raise ValueError(f"unknown backend {self.options.backend!r}; choose one of {', '.join(BACKENDS)}")
-        self.clock = clock or ScaledClock(self.options.speed)
+        dry_speed = self.options.speed if self.options.speed else 1.0
+        self.clock = clock or ScaledClock(dry_speed)  # the sim backend swaps in the world's clock
         self.events = events or EventStream(self.clock)
         self.recorder = ReportBuilder(self.events)
         self.blackboard = Blackboard(self.events, spec.blackboard)
         self.supervisor: Supervisor | None = None
+        self.world: Any = None  # the simulator's WorldProcess (sim backend)
         self.executor: Executor | None = None
         self.outcome: RunOutcome | None = None
         self._hurry = False
@@ -82,9 +91,14 @@ class Session:
             world.pose = world.markers[start].pose
             world.last_marker = start
         families = needed_families(self.spec)
+        if self.options.backend == "sim":
+            self._start_world(world.pose)
         if families:
             options = {f: dict(self.options.daemon_options.get(f, {})) for f in families}
             options.setdefault("loco", {}).setdefault("start_pose", world.pose.to_dict())
+            if self.world is not None:
+                for family_options in options.values():
+                    family_options.setdefault("world", str(self.world.socket_path))
             self.supervisor = Supervisor(
                 self.options.backend, self.clock, self.events, families=families, options=options,
                 handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
@@ -100,6 +114,18 @@ class Session:
                 self.supervisor.client("loco").state_listeners.append(self._track_pose)
                 self.events.subscribe(self._track_loco_replies)
         return self
+
+    def _start_world(self, start: Pose) -> None:
+        """Launch the MuJoCo world server and make its sim time this run's clock (lockstep)."""
+        from .sim.world.client import launch_world
+
+        speed = self.options.speed if self.options.speed is not None else (1.0 if self.options.viewer else 0.0)
+        self.world = launch_world(seed=self.options.seed, speed=speed,
+                                  record=str(self.options.record) if self.options.record else None,
+                                  record_fps=self.options.record_fps, viewer=self.options.viewer,
+                                  start=(start.x, start.y, start.yaw))
+        self.clock = self.world.clock(driver=True)
+        self.events.clock = self.clock
 
     def __enter__(self) -> "Session":
         return self.start()
@@ -143,6 +169,10 @@ class Session:
     def close(self) -> None:
         if self.supervisor is not None:
             self.supervisor.shutdown(timeout=0.3 if self._hurry else 2.0)
+        if self.world is not None:
+            if self.options.map_out and self.outcome is not None:
+                self._draw_map(self.options.map_out)
+            self.world.close()
         if self._log_writer is not None:
             self._log_writer.close()
         if self._log_file is not None:
@@ -173,6 +203,16 @@ class Session:
             self.supervisor.options.setdefault("loco", {})["start_pose"] = new.to_dict()
         if moved:
             self.events.publish("pose", **new.to_dict())
+
+    def _draw_map(self, out: Path) -> None:
+        """The lab map with the markers, the path the robot drove and the known objects."""
+        from .sim.world.occupancy import draw_map_png, scene_grid
+
+        path = [(e.data["x"], e.data["y"]) for e in self.recorder.events if e.kind == "pose"]
+        markers = {m.name: {"x": m.x, "y": m.y, "yaw": m.yaw} for m in self.blackboard.world.markers.values()}
+        objects = {k: {"x": o.x, "y": o.y} for k, o in self.blackboard.world.objects.items()}
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        draw_map_png(scene_grid(), markers, path, objects, out)
 
     def _settle(self, timeout: float = 1.0) -> None:
         """After the run: wait (wall time) for replies still owed, e.g. to cancels, so the report

@@ -45,8 +45,9 @@ class RunResult:
         return self.outcome.status
 
     def failure(self, path: str) -> str | None:
-        """The failure reason recorded for a node path, if it failed."""
-        return next((f["reason"] for f in self.report["failures"] if f["path"] == path), None)
+        """Why the leaf at ``path`` last failed (conditions included), or None if it never did."""
+        reasons = [e.get("reason") for e in self.events("leaf") if e["path"] == path and e["outcome"] == "FAILURE"]
+        return reasons[-1] if reasons else None
 
     def events(self, kind: str) -> list[dict[str, Any]]:
         return [e for e in self.report["events"] if e["kind"] == kind]

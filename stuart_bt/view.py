@@ -31,9 +31,11 @@ STATUS_STYLE = {"SUCCESS": "green", "FAILURE": "bold red", "RUNNING": "bold yell
 STATUS_MARK = {"SUCCESS": "✔", "FAILURE": "✘", "RUNNING": "▶", "INVALID": "·"}
 def _interesting(event: Event) -> str | None:
     d = event.data
-    if event.kind == "leaf":
+    if event.kind == "leaf" and d.get("skill") != "condition":  # conditions answer every tick
         line = f"{d.get('outcome')}: {event.path}"
         return line + (f" ({d['reason']})" if d.get("reason") else "")
+    if event.kind == "leaf":
+        return None
     if event.kind == "command" and d.get("cmd") == "say":
         return f"says: {d.get('args', {}).get('text')}"
     if event.kind == "command" and d.get("cmd") == "play":

@@ -21,6 +21,8 @@ EXPECTED = [
     "roundtrip.stuart_bt.p99",
     "roundtrip.stuart_bt.median_vs_rclpy_same_process",
     "roundtrip.stuart_bt.median_vs_rclpy_two_process",
+    *(f"ik.{solver}.{figure}" for solver in ("pin", "placo")
+      for figure in ("success_rate", "error_median", "error_max", "time_median", "time_p99")),
 ]
 
 

@@ -1,0 +1,159 @@
+"""Simulated locomotion: plan on the lab's occupancy map, let the world's path follower walk it.
+
+The split mirrors the robot: the daemon plans a global path (A* on the saved map, smoothed to a
+few straight legs) and hands it to the world's navigation service, which follows it under the
+vendor controller's limits (including its ~0.3 m/s dead band) and stops for a person in the way.
+The daemon watches the world's state: arrival ends the walk, a block that lasts longer than
+``blocked_timeout`` sim seconds fails it with ``blocked``, stop and cancel brake at once.
+
+Options: ``world`` (socket path, required), ``map`` (map YAML, default the lab's),
+``robot_radius`` (0.3 m), ``relative_clearance`` (0.15 m: margin for body-relative moves, which
+are driven straight without a global plan, like the robot's odometry moves), ``max_speed`` (0.6 m/s), ``blocked_timeout`` (20 s), ``poll`` (0.1 s).
+"""
+
+from __future__ import annotations
+
+import math
+from importlib import resources
+from typing import Any
+
+from stuart_bt.clock import Clock
+from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
+from stuart_bt.sim.world.client import WorldClient, WorldError
+from stuart_bt.world import Pose
+
+from .backend import LocoBackend, NavigateGoal, RelativeGoal, goal_pose
+from .dry import wrap
+from .planner import PlanningError, load_map, path_length, plan
+
+
+def default_map() -> str:
+    return str(resources.files("stuart_bt.sim") / "maps" / "lab.yaml")
+
+
+class SimWalk(Activity):
+    """One base_path command followed to arrival, block timeout, stop or cancel."""
+
+    resource = "motion"
+    report_every = 0.5
+
+    def __init__(self, backend: "SimLoco", waypoints: list[tuple[float, float]], final_yaw: float | None,
+                 goal: NavigateGoal | None) -> None:
+        self.backend = backend
+        self.waypoints = waypoints
+        self.final_yaw = final_yaw
+        self.goal = goal
+        self.start_pose = backend.pose()
+        self._next_poll = 0.0
+        self._next_report = 0.0
+        self._blocked_since: float | None = None
+
+    def start(self, now: float) -> dict[str, Any]:
+        goal = self.goal
+        self.backend.call("base_path", waypoints=[list(p) for p in self.waypoints], final_yaw=self.final_yaw,
+                          max_speed=self.backend.max_speed,
+                          tolerance=goal.tolerance if goal else 0.10,
+                          yaw_tolerance=goal.yaw_tolerance if goal else 0.0873)
+        self._next_poll = now + self.backend.poll_period
+        self._next_report = now + self.report_every
+        return {"waypoints": [[round(x, 3), round(y, 3)] for x, y in self.waypoints],
+                "length": round(path_length(self.waypoints), 3)}
+
+    def next_due(self) -> float:
+        return self._next_poll
+
+    def poll(self, now: float) -> Progress | Done | None:
+        if now < self._next_poll:
+            return None
+        self._next_poll = now + self.backend.poll_period
+        state = self.backend.refresh()
+        status = state.get("base_status")
+        pose = self.backend.pose()
+        if status == "arrived":
+            return Done({"pose": pose.to_dict(), "marker": self.goal.marker if self.goal else None,
+                         "distance": round(path_length(self.waypoints), 3),
+                         "error": state.get("arrival_error")})
+        if status == "blocked":
+            if self._blocked_since is None:
+                self._blocked_since = now
+            elif now - self._blocked_since > self.backend.blocked_timeout:
+                self.backend.call("base_stop")
+                raise DaemonError("blocked", f"the path stayed blocked for {self.backend.blocked_timeout:g} s; "
+                                  "stopped", data={"pose": pose.to_dict()})
+        else:
+            self._blocked_since = None
+        if now >= self._next_report:
+            self._next_report = now + self.report_every
+            return Progress({"pose": pose.to_dict(), "status": status})
+        return None
+
+    def cancel(self, now: float) -> dict[str, Any]:
+        self.backend.call("base_stop")
+        return {"pose": self.backend.pose().to_dict()}
+
+
+class SimLoco(LocoBackend):
+    name = "sim"
+
+    def __init__(self, clock: Clock, options: dict[str, Any]) -> None:
+        super().__init__(clock, options)
+        if "world" not in options:
+            raise ValueError("the sim loco backend needs the world's socket path (option 'world')")
+        self.world = WorldClient(options["world"])
+        map_file = options.get("map") or default_map()
+        self.grid = load_map(map_file, float(options.get("robot_radius", 0.3)))
+        # body-relative moves are odometry moves (no global plan), checked against a thinner margin
+        self.near_grid = load_map(map_file, float(options.get("relative_clearance", 0.15)))
+        self.max_speed = float(options.get("max_speed", 0.6))
+        self.blocked_timeout = float(options.get("blocked_timeout", 20.0))
+        self.poll_period = float(options.get("poll", 0.1))
+        self._state: dict[str, Any] = {}
+        self.refresh()
+
+    def call(self, cmd: str, **args: Any) -> dict[str, Any]:
+        try:
+            return self.world.call(cmd, **args)
+        except WorldError as e:
+            raise DaemonError("backend_error", f"world {cmd}: {e}") from None
+
+    def refresh(self) -> dict[str, Any]:
+        self._state = self.call("state")
+        return self._state
+
+    def pose(self) -> Pose:
+        return Pose.from_dict(self._state.get("base", {}))
+
+    def navigate(self, goal: NavigateGoal) -> Activity:
+        start = Pose.from_dict(self.refresh()["base"])
+        gx, gy, gyaw = goal_pose(start, goal.target)
+        if math.hypot(gx - start.x, gy - start.y) <= goal.tolerance:
+            waypoints = [(start.x, start.y)]
+        elif isinstance(goal.target, RelativeGoal):
+            if not self.near_grid.segment_free((start.x, start.y), (gx, gy)):
+                raise DaemonError("unreachable", f"moving by ({goal.target.dx:g}, {goal.target.dy:g}) m would hit "
+                                  "an obstacle")
+            waypoints = [(start.x, start.y), (gx, gy)]
+        else:
+            try:
+                waypoints = plan(self.grid, (start.x, start.y), (gx, gy))
+            except PlanningError as e:
+                where = f" ({goal.marker})" if goal.marker else ""
+                raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}") from None
+        return SimWalk(self, waypoints, None if gyaw is None else wrap(gyaw), goal)
+
+    def turn(self, angle: float) -> Activity:
+        start = Pose.from_dict(self.refresh()["base"])
+        return SimWalk(self, [(start.x, start.y)], wrap(start.yaw + angle), None)
+
+    def stop(self) -> None:
+        self.call("base_stop")
+
+    def state(self) -> dict[str, Any]:
+        try:
+            self.refresh()
+        except DaemonError:
+            pass  # the heartbeat still goes out; the next command reports the world's error
+        return {"pose": self.pose().to_dict(), "status": self._state.get("base_status")}
+
+    def close(self) -> None:
+        self.world.close()

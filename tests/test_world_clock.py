@@ -1,0 +1,99 @@
+"""Sim time through the shared clock file: lockstep with a driver, free-running, the speed cap."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+from stuart_bt.sim.world.client import launch_world
+from stuart_bt.sim.world.clock import ClockFile, SimClock
+from stuart_bt.sim.world.scene import default_robot_path
+
+STANDIN = Path(__file__).parent / "data" / "standin_robot.xml"
+ROBOT = None if default_robot_path().is_file() else STANDIN
+
+
+def test_clock_file_round_trip(tmp_path):
+    path = tmp_path / "c.clock"
+    world_side = ClockFile(path, 0.004)
+    reader = SimClock(path)
+    driver = SimClock(path, driver=True)
+    try:
+        assert reader.spec() == f"sim:{path}"
+        world_side.publish(1.25)
+        assert reader.now() == 1.25 == driver.now()
+        assert driver.factor == math.inf  # the executor must call sleep_until, never wait on the wall clock
+        world_side.set_rate(30.0)
+        assert reader.factor == 30.0
+        assert world_side.driven()
+        driver.close()
+        assert not world_side.driven()
+    finally:
+        reader.close()
+        world_side.close()
+    assert not path.exists()
+
+
+@pytest.fixture(scope="module")
+def world():
+    with launch_world(robot=ROBOT, stderr=subprocess.DEVNULL) as w:
+        yield w
+
+
+def test_lockstep_world_waits_for_the_permit(world):
+    driver = world.clock(driver=True)
+    try:
+        time.sleep(0.05)  # the world reaches the permit it had and stops there
+        held = driver.now()
+        time.sleep(0.2)
+        assert driver.now() == held, "sim time moved without a permit"
+        target = held + 0.5
+        driver.sleep_until(target)
+        reached = driver.now()
+        assert target <= reached <= target + world.ready["timestep"] + 1e-9
+        time.sleep(0.1)
+        assert driver.now() == reached  # and stays there until the next permit
+        state = world.call("state")  # requests are served while the world waits
+        assert abs(state["t"] - reached) < 1e-3
+        # A 20 Hz tick loop: each tick's deadline is met exactly, far faster than real time.
+        start_wall, start_sim = time.monotonic(), driver.now()
+        deadline = start_sim
+        for _ in range(100):
+            deadline += 0.05
+            driver.sleep_until(deadline)
+            assert deadline <= driver.now() <= deadline + world.ready["timestep"] + 1e-9
+        assert (driver.now() - start_sim) / (time.monotonic() - start_wall) > 2.0
+    finally:
+        driver.close()
+    reader = world.clock()
+    t0 = reader.now()
+    time.sleep(0.1)
+    assert reader.now() > t0 + 0.1, "without a driver the world free-runs again"
+    reader.close()
+
+
+def test_reader_sleep_until_waits_for_sim_time(world):
+    reader = world.clock()
+    try:
+        target = reader.now() + 2.0
+        reader.sleep_until(target)
+        assert reader.now() >= target
+        assert reader.factor >= 1.0
+    finally:
+        reader.close()
+
+
+def test_speed_cap_runs_at_five_times_wall():
+    with launch_world(robot=ROBOT, speed=5.0, stderr=subprocess.DEVNULL) as w:
+        clock = w.clock()
+        time.sleep(0.3)
+        wall0, sim0 = time.monotonic(), clock.now()
+        time.sleep(1.5)
+        ratio = (clock.now() - sim0) / (time.monotonic() - wall0)
+        assert 4.5 <= ratio <= 5.5, ratio
+        assert 4.0 <= clock.factor <= 6.0
+        clock.close()
