@@ -3,7 +3,6 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install -q --disable-pip-version-check
-SPEED  ?= 10
 
 .PHONY: demo test bench system-deps schema docs clean
 
@@ -13,6 +12,10 @@ $(BIN)/python:
 # Re-install whenever the package metadata changes; one stamp per set of extras.
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(PIP) -e .
+	touch $@
+
+$(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
+	$(PIP) -e ".[sim,ik]"
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
@@ -26,10 +29,11 @@ $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
 system-deps:
 	scripts/system-deps.sh
 
-## demo: the lab tour (dry backend until the simulator lands), report in out/
-demo: system-deps $(VENV)/.stamp-base
-	$(BIN)/stuart-bt run trees/lab_tour.yaml --backend dry --speed $(SPEED) \
-		--report out/lab_tour_report.json --log out/lab_tour.jsonl
+## demo: the lab tour in the MuJoCo simulator, headless: report, event log, video and map in out/
+demo: system-deps $(VENV)/.stamp-sim
+	$(BIN)/stuart-bt run trees/lab_tour.yaml --backend sim \
+		--report out/lab_tour_report.json --log out/lab_tour.jsonl \
+		--record out/lab_tour.mp4 --map-out out/lab_tour_map.png
 
 ## test: the whole pytest suite
 test: system-deps $(VENV)/.stamp-test

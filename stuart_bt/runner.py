@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
@@ -72,6 +74,7 @@ class Session:
         self.executor: Executor | None = None
         self.outcome: RunOutcome | None = None
         self._hurry = False
+        self.run_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-run-"))  # daemon and world logs
         self._log_file: IO[str] | None = None
         self._log_writer: JsonlWriter | None = None
 
@@ -102,6 +105,7 @@ class Session:
             self.supervisor = Supervisor(
                 self.options.backend, self.clock, self.events, families=families, options=options,
                 handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
+                run_dir=self.run_dir,
             )
             self.supervisor.start()
         ctx = RunContext(self.clock, self.events, self.blackboard, self.supervisor, Path(self.spec.file).parent)
@@ -120,7 +124,8 @@ class Session:
         from .sim.world.client import launch_world
 
         speed = self.options.speed if self.options.speed is not None else (1.0 if self.options.viewer else 0.0)
-        self.world = launch_world(seed=self.options.seed, speed=speed,
+        self._world_log = open(self.run_dir / "world.stderr.log", "wb")
+        self.world = launch_world(seed=self.options.seed, speed=speed, stderr=self._world_log,
                                   record=str(self.options.record) if self.options.record else None,
                                   record_fps=self.options.record_fps, viewer=self.options.viewer,
                                   start=(start.x, start.y, start.yaw))
@@ -173,6 +178,9 @@ class Session:
             if self.options.map_out and self.outcome is not None:
                 self._draw_map(self.options.map_out)
             self.world.close()
+            self._world_log.close()
+        if self.outcome is not None and self.outcome.status == "SUCCESS":
+            shutil.rmtree(self.run_dir, ignore_errors=True)  # logs are kept when something went wrong
         if self._log_writer is not None:
             self._log_writer.close()
         if self._log_file is not None:
