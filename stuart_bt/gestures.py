@@ -58,8 +58,11 @@ def normalise(name: str) -> str:
 
 
 def lookup(name: str) -> Gesture | None:
-    """The gesture called ``name`` (any spelling the library accepts), or ``None``."""
+    """The gesture called ``name`` (any spelling the library accepts, or its vendor action id
+    such as ``"26"``), or ``None``."""
     key = normalise(name)
+    if key.isdigit():
+        return next((g for g in LIBRARY.values() if g.action_id == int(key)), None)
     if key in LIBRARY:
         return LIBRARY[key]
     if key in ALIASES:
