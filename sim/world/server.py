@@ -113,6 +113,7 @@ class World:
             "hand": self.cmd_hand,
             "person": self.cmd_person,
             "set_object": self.cmd_set_object,
+            "surface": self.cmd_surface,
             "render": self.cmd_render,
             "record": self.cmd_record,
             "record_stop": self.cmd_record_stop,
@@ -353,6 +354,23 @@ class World:
         self.data.qvel[obj.qvel:obj.qvel + 6] = 0.0
         self.sync_pose()
         return {"object": label, "x": _r(x), "y": _r(y), "z": _r(z)}
+
+    def cmd_surface(self, args: dict[str, Any]) -> dict[str, Any]:
+        """Height of the highest static surface (floor, table, bench) under a point, by a ray
+        cast straight down through the scene's static geoms only: where an object can be put."""
+        cmd = "surface"
+        a.only_known(args, ("x", "y"), cmd)
+        x, y = a.number(args, "x", cmd), a.number(args, "y", cmd)
+        top = 3.0
+        groups = np.zeros(6, dtype=np.uint8)
+        groups[0] = 1  # the static class: floor, walls, furniture
+        geom = np.array([-1], dtype=np.int32)
+        distance = mujoco.mj_ray(self.model, self.data, np.array([x, y, top]), np.array([0.0, 0.0, -1.0]),
+                                 groups, 1, -1, geom)
+        if distance < 0:
+            raise WorldError("not_found", f"no surface under ({x:.2f}, {y:.2f})")
+        name = mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_GEOM, int(geom[0])) or f"geom {int(geom[0])}"
+        return {"z": _r(top - distance), "geom": name}
 
     # -- pictures ----------------------------------------------------------------------------
 

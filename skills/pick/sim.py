@@ -35,6 +35,8 @@ from .ik import IKResult, check_reachable, make_solver
 TORSO_HEIGHT = desc.PELVIS_HEIGHT + desc.WAIST_HEIGHT  # torso_link above the floor, waist at zero
 PRE_GRASP = np.array([-0.08, 0.0, 0.10])  # 8 cm in front (towards the robot), 10 cm above
 LIFT = np.array([0.0, 0.0, 0.10])
+DEFAULT_REST_HEIGHT = 0.1  # m: object origin above its surface, when it was not picked here
+PLACE_CLEARANCE = 0.01  # m: let go this far above the surface
 FIND_RANGE = 8.0  # m: the sim's stand-in for "in view" until perception lands
 
 
@@ -118,6 +120,7 @@ class SimPick(PickBackend):
         self.gate = bool(options.get("confirm", False))
         self.lift_check = float(options.get("lift_check", 0.05))
         self.grasp_dz = float(options.get("grasp_dz", 0.03))
+        self.rest_height: dict[str, float] = {}  # label -> origin height above the surface it stood on
         self.active: Phased | None = None
         self._lifted_from: float | None = None
 
@@ -157,6 +160,7 @@ class SimPick(PickBackend):
             solutions[name] = result
             seed = result.q
         self._lifted_from = float(obj["z"])
+        self.rest_height[label] = float(obj["z"]) - self.call("surface", x=obj["x"], y=obj["y"])["z"]
         phases = [
             ("approach", "arm_trajectory", {"points": [{"t": 1.5, "joints": solutions["pre_grasp"].q}], "id": "approach"}, 1.5),
             ("descend", "arm_trajectory", {"points": [{"t": 1.0, "joints": solutions["grasp"].q}], "id": "descend"}, 1.0),
@@ -174,7 +178,7 @@ class SimPick(PickBackend):
         obj = state.get("objects", {}).get(label)
         position = {k: round(float(obj[k]), 4) for k in ("x", "y", "z")} if obj else None
         if result.get("releasing"):
-            return {"object": label, "arm": side, "position": position}
+            return {"object": label, "arm": side, "position": position, "surface": result.get("surface")}
         held = state.get("held", {}).get(side)
         rise = (obj["z"] - self._lifted_from) if obj and self._lifted_from is not None else 0.0
         if held != label or rise < self.lift_check:
@@ -193,23 +197,37 @@ class SimPick(PickBackend):
 
     # -- release and find ---------------------------------------------------------------------------
     def release(self, arm: str, robot_pose: Pose) -> Activity:
+        """Put the held object down on the surface under it (table, bench), planned like a pick:
+        the lowering target must pass the reach check and IK before the arm moves, else the
+        robot keeps holding and says why (the floor is out of a standing G1's reach)."""
         state = self.call("state")
         held = {s: v for s, v in state.get("held", {}).items() if v}
         side = arm if arm != "auto" else next(iter(held), "right")
         if side not in held:
             raise DaemonError("not_holding", f"the {side} hand holds nothing")
         label = held[side]
-        joints = state.get("joints", {})
-        current = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
+        obj = state["objects"][label]
+        surface = self.call("surface", x=obj["x"], y=obj["y"])
+        drop = surface["z"] + self.rest_height.get(label, DEFAULT_REST_HEIGHT) + PLACE_CLEARANCE - obj["z"]
+        base = Pose.from_dict(state["base"])
+        hand = np.array(state["hand_points"][side], dtype=float) + np.array([0.0, 0.0, drop])
+        target = world_to_torso(hand, base)
+        where = f"on the {surface['geom'].replace('_', ' ')} ({surface['z']:.2f} m)"
+        reason = check_reachable(side, target)  # type: ignore[arg-type]
+        if reason is None:
+            joints = state.get("joints", {})
+            seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
+            result = self.solver.solve(side, target, seed)  # type: ignore[arg-type]
+            reason = None if result.success else result.reason
+        if reason is not None:
+            raise DaemonError("unreachable", f"cannot put the {label} down {where} from here: {reason}")
         neutral = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]
-        lower = dict(current)
-        lower[f"{side}_shoulder_pitch_joint"] = current.get(f"{side}_shoulder_pitch_joint", 0.0) + 0.12
         phases = [
-            ("lower", "arm_trajectory", {"points": [{"t": 0.8, "joints": lower}], "id": "lower"}, 0.8),
+            ("lower", "arm_trajectory", {"points": [{"t": 1.2, "joints": result.q}], "id": "lower"}, 1.2),
             ("open", "hand", {"side": side, "closed": False}, 0.6),
             ("retract", "arm_trajectory", {"points": [{"t": 1.5, "joints": neutral}], "id": "retract"}, 1.5),
         ]
-        return Phased(self, phases, {"object": label, "arm": side, "releasing": True})
+        return Phased(self, phases, {"object": label, "arm": side, "releasing": True, "surface": surface["geom"]})
 
     def find(self, label: str, robot_pose: Pose) -> Activity:
         state = self.call("state")
