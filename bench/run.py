@@ -24,13 +24,14 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import ik, roundtrip, tick_overhead
+from . import ik, roundtrip, sim, tick_overhead
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     tick_overhead.NAME: tick_overhead.run,
     roundtrip.NAME: roundtrip.run,
     ik.NAME: ik.run,
+    sim.NAME: sim.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "stuart-bt")

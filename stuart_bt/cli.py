@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from . import __version__
+from .gesture_cli import add_gesture_commands
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -129,19 +130,6 @@ def cmd_bench(args: argparse.Namespace) -> int:
     return bench_main(args.rest)
 
 
-def cmd_gesture_list(args: argparse.Namespace) -> int:
-    from . import gestures
-
-    aliases: dict[str, list[str]] = {}
-    for alias, target in gestures.ALIASES.items():
-        aliases.setdefault(target, []).append(alias)
-    print(f"{'name':<16} {'id':>4}  {'seconds':>7}  {'holds':<5}  aliases")
-    for g in gestures.LIBRARY.values():
-        print(f"{g.name:<16} {g.action_id:>4}  {g.duration:>7.1f}  {'yes' if g.holds else 'no':<5}  "
-              f"{', '.join(aliases.get(g.name, []))}")
-    return EXIT_OK
-
-
 def cmd_schema(args: argparse.Namespace) -> int:
     import json
 
@@ -221,10 +209,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("rest", nargs=argparse.REMAINDER, help="options for bench/run.py (see --help there)")
     p.set_defaults(func=cmd_bench)
 
-    p = sub.add_parser("gesture", help="the gesture library")
-    gsub = p.add_subparsers(dest="gesture_command", metavar="ACTION", required=True)
-    g = gsub.add_parser("list", help="list gesture names, vendor action ids and durations")
-    g.set_defaults(func=cmd_gesture_list)
+    add_gesture_commands(sub)
 
     p = sub.add_parser("schema", help="print the JSON Schema of tree files (for editors)")
     p.add_argument("-o", "--output", metavar="FILE")

@@ -23,6 +23,11 @@ EXPECTED = [
     "roundtrip.stuart_bt.median_vs_rclpy_two_process",
     *(f"ik.{solver}.{figure}" for solver in ("pin", "placo")
       for figure in ("success_rate", "error_median", "error_max", "time_median", "time_p99")),
+    "sim.tour.real_time_factor",
+    "sim.tour.real_time_factor_with_startup",
+    "sim.tour.arrival_error_max",
+    "sim.tour.arrival_yaw_error_max",
+    "sim.render.fps",
 ]
 
 

@@ -233,7 +233,8 @@ def write_tree(tmp: Path, name: str, body: str) -> Path:
 
 
 # -- help ----------------------------------------------------------------------------------------------
-COMMANDS = [[], ["validate"], ["show"], ["run"], ["bench"], ["gesture"], ["gesture", "list"], ["schema"]]
+COMMANDS = [[], ["validate"], ["show"], ["run"], ["bench"], ["gesture"], ["gesture", "list"], ["gesture", "record"], ["gesture", "show"], ["gesture", "play"],
+            ["schema"]]
 
 
 @pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "stuart-bt")

@@ -219,3 +219,14 @@ def test_save_refuses_bad_frames(tmp_path) -> None:
     with pytest.raises(GestureFileError, match="'name'"):
         save_gesture_file(path, "", keyframes("clap"))
     assert not path.exists()
+
+
+def test_a_value_at_a_joint_limit_survives_saving_and_loading(tmp_path):
+    from stuart_bt.skills.gesture.backend import Keyframe
+    from stuart_bt.skills.gesture.keyframes import _LIMITS, NEUTRAL, load_gesture_file, save_gesture_file
+
+    joint = "right_elbow_joint"
+    low, high = _LIMITS[joint]
+    frames = [Keyframe(0.0, dict(NEUTRAL)), Keyframe(1.0, {**NEUTRAL, joint: high}), Keyframe(2.0, {**NEUTRAL, joint: low})]
+    loaded = load_gesture_file(save_gesture_file(tmp_path / "edge.json", "edge", frames))
+    assert low <= loaded.keyframes[2].joints[joint] <= loaded.keyframes[1].joints[joint] <= high

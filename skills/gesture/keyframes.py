@@ -380,11 +380,18 @@ def save_gesture_file(path: Path | str, name: str, frames: list[Keyframe]) -> Pa
     if problems:
         raise GestureFileError(path, problems)
     doc = {"name": name,
-           "keyframes": [{"t": round(f.t, 4), "joints": {k: round(float(v), 5) for k, v in f.joints.items()}}
+           "keyframes": [{"t": round(f.t, 4), "joints": {k: _round_inward(k, float(v)) for k, v in f.joints.items()}}
                          for f in frames]}
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
     return path
+
+
+def _round_inward(joint: str, value: float, digits: int = 5) -> float:
+    """Round for the file without leaving the joint's limits (a value at a limit stays loadable)."""
+    low, high = _LIMITS.get(joint, (-math.inf, math.inf))
+    return min(max(round(value, digits), math.ceil(low * 10**digits) / 10**digits),
+               math.floor(high * 10**digits) / 10**digits)
 
 
 def _read(path: Path) -> tuple[RecordedGesture | None, list[str]]:
