@@ -24,7 +24,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import ik, roundtrip, sim, tick_overhead
+from . import htn, ik, parse, roundtrip, sim, tick_overhead
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -32,9 +32,11 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     roundtrip.NAME: roundtrip.run,
     ik.NAME: ik.run,
     sim.NAME: sim.run,
+    htn.NAME: htn.run,
+    parse.NAME: parse.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
-PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "stuart-bt")
+PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")
 COLUMNS = ("benchmark", "figure", "value", "unit", "anchor", "anchor value", "ratio", "goal", "met?")
 
 

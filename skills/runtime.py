@@ -15,6 +15,7 @@ import argparse
 import ctypes
 import importlib
 import json
+import math
 import os
 import selectors
 import signal
@@ -169,7 +170,8 @@ class Daemon:
                 timeout = min(timeout, POLL_PERIOD)
             else:
                 clock = self.backend.clock
-                timeout = min(timeout, (min(known) - clock.now()) / clock.factor)
+                timeout = min(timeout, (min(known) - clock.now()) / clock.factor,
+                              getattr(clock, "poll_interval", math.inf))
         return max(0.0, timeout)
 
     def _read_input(self) -> None:

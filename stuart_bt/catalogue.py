@@ -131,14 +131,14 @@ LEAVES: dict[str, LeafSpec] = {
             "gesture",
             "Play a gesture from the library, a list of them in order, or a recorded gesture file.",
             (
-                Param("name", "gesture", "Gesture name, e.g. 'high wave'.", required=True),
+                Param("play", "gesture", "Gesture name or vendor id, e.g. 'high wave' or '26'.", required=True),
                 Param("sequence", "gestures", "Gesture names played one after another.", required=True),
                 Param("file", "path", "Recorded gesture JSON (keyframes).", required=True),
                 Param("wait", "boolean", "false: succeed at once and let the gesture play on.", default=True),
             ),
             family="gesture",
-            shorthand="name",
-            one_of=(("name",), ("sequence",), ("file",)),
+            shorthand="play",
+            one_of=(("play",), ("sequence",), ("file",)),
             default_timeout=60.0,
         ),
         LeafSpec(

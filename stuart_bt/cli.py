@@ -15,6 +15,8 @@ from typing import Any, Callable, Sequence
 
 from . import __version__
 from .gesture_cli import add_gesture_commands
+from .htn import add_plan_command
+from .language.cli import add_parse_command
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -210,6 +212,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_bench)
 
     add_gesture_commands(sub)
+    add_parse_command(sub)
+    add_plan_command(sub)
 
     p = sub.add_parser("schema", help="print the JSON Schema of tree files (for editors)")
     p.add_argument("-o", "--output", metavar="FILE")

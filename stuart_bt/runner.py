@@ -133,7 +133,11 @@ class Session:
         self.events.clock = self.clock
 
     def __enter__(self) -> "Session":
-        return self.start()
+        try:
+            return self.start()
+        except BaseException:
+            self.close()  # a daemon or the world that did start must not outlive a failed start
+            raise
 
     def __exit__(self, *exc: object) -> None:
         self.close()

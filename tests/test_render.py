@@ -43,7 +43,7 @@ def test_unicode_tree_shows_glyphs_names_and_key_params():
         │   └── pick object=cup
         └── [=>] parallel policy=one
             ├── wait seconds=5
-            └── gesture name=wave
+            └── gesture play=wave
         """)
 
 

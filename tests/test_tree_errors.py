@@ -130,7 +130,7 @@ def test_boolean_parameter():
 
 def test_unknown_gesture_suggests_the_closest_name():
     assert one_error("root: {gesture: high wav}\n") == (
-        "t.yaml:1:17: t: parameter 'name' for gesture: unknown gesture 'high wav' (did you mean 'high wave'?)")
+        "t.yaml:1:17: t: parameter 'play' for gesture: unknown gesture 'high wav' (did you mean 'high wave'?)")
 
 
 def test_gesture_list_reports_the_bad_element():
@@ -190,7 +190,7 @@ def test_references_are_accepted_for_every_type_and_templates_in_text():
             - retry: {times: $tries, child: {gesture: "${mood} wave"}}
             - speak: {text: "Hello ${visitor.name}", wait: $overlap}
         """), markers_file=MARKERS)
-    assert spec.find("root/retry/gesture").params == {"name": "${mood} wave"}
+    assert spec.find("root/retry/gesture").params == {"play": "${mood} wave"}
 
 
 # --- composites and decorators ---------------------------------------------------------------

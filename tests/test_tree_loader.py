@@ -187,12 +187,12 @@ def test_include_substitutes_arguments_and_names_roots_after_the_file_stem():
     ]
     assert spec.find("tour/station_2/navigate").params == {"marker": "station_2"}
     assert spec.find("tour/station_2/present/speak").params == {"text": "This is the printers."}
-    assert spec.find("tour/station_2/present/gesture").params == {"name": "clap"}
+    assert spec.find("tour/station_2/present/gesture").params == {"play": "clap"}
 
 
 def test_nested_include_uses_declared_defaults_when_arguments_are_omitted():
     spec = load_tree(TREES / "tour.yaml")
-    assert spec.find("tour/station_1/present/gesture").params == {"name": "high wave"}  # station's default
+    assert spec.find("tour/station_1/present/gesture").params == {"play": "high wave"}  # station's default
     assert spec.find("tour/station_1/present/wait").params == {"seconds": 0.5}  # present's default
 
 

@@ -199,6 +199,13 @@ class SimClock:
                 pause = min(pause * 2.0, 0.002)
             time.sleep(pause)
 
+    @property
+    def poll_interval(self) -> float:
+        """Longest wall wait between two looks at the time for a reader with something due.
+        Lockstep time comes in bursts (the executor's ticks), so dividing by the average rate
+        oversleeps; a short interval keeps daemons' results on time in sim seconds."""
+        return 0.002 if self.alive else math.inf
+
     def spec(self) -> str:
         """What a daemon needs to build a reader of the same time: ``sim:PATH``."""
         return f"sim:{self.path}"

@@ -37,6 +37,7 @@ PRE_GRASP = np.array([-0.08, 0.0, 0.10])  # 8 cm in front (towards the robot), 1
 LIFT = np.array([0.0, 0.0, 0.10])
 DEFAULT_REST_HEIGHT = 0.1  # m: object origin above its surface, when it was not picked here
 PLACE_CLEARANCE = 0.01  # m: let go this far above the surface
+PLACE_REACH_IN = (0.06, 0.03, 0.0)  # m: put things down further in than carried, if reachable
 FIND_RANGE = 8.0  # m: the sim's stand-in for "in view" until perception lands
 
 
@@ -211,14 +212,18 @@ class SimPick(PickBackend):
         drop = surface["z"] + self.rest_height.get(label, DEFAULT_REST_HEIGHT) + PLACE_CLEARANCE - obj["z"]
         base = Pose.from_dict(state["base"])
         hand = np.array(state["hand_points"][side], dtype=float) + np.array([0.0, 0.0, drop])
-        target = world_to_torso(hand, base)
         where = f"on the {surface['geom'].replace('_', ' ')} ({surface['z']:.2f} m)"
-        reason = check_reachable(side, target)  # type: ignore[arg-type]
-        if reason is None:
-            joints = state.get("joints", {})
-            seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
-            result = self.solver.solve(side, target, seed)  # type: ignore[arg-type]
-            reason = None if result.success else result.reason
+        joints = state.get("joints", {})
+        seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
+        reason: str | None = None
+        for reach_in in PLACE_REACH_IN:  # a little further in, away from the edge, when the arm allows
+            target = world_to_torso(hand, base) + np.array([reach_in, 0.0, 0.0])
+            reason = check_reachable(side, target)  # type: ignore[arg-type]
+            if reason is None:
+                result = self.solver.solve(side, target, seed)  # type: ignore[arg-type]
+                reason = None if result.success else result.reason
+            if reason is None:
+                break
         if reason is not None:
             raise DaemonError("unreachable", f"cannot put the {label} down {where} from here: {reason}")
         neutral = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]

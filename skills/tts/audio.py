@@ -7,6 +7,7 @@ state, so a missing package degrades timing, never the run.
 
 from __future__ import annotations
 
+import shutil
 import tempfile
 from pathlib import Path
 from typing import Any
@@ -40,6 +41,7 @@ class AudioTts(DryTts):
 
     def __init__(self, clock: Clock, options: dict[str, Any]) -> None:
         super().__init__(clock, options)
+        self._own_dir = not options.get("audio_dir")  # a folder we made is ours to remove
         out = Path(options.get("audio_dir") or tempfile.mkdtemp(prefix="stuart_bt-audio-"))
         self.synth = Synthesizer(out, options.get("engine", "auto"), options.get("voice", "en-us"),
                                  int(options.get("words_per_minute", 165)), options.get("piper_model"))
@@ -55,3 +57,7 @@ class AudioTts(DryTts):
 
     def state(self) -> dict[str, Any]:
         return {**super().state(), "engine": self.synth.engine}
+
+    def close(self) -> None:
+        if self._own_dir:
+            shutil.rmtree(self.synth.out_dir, ignore_errors=True)

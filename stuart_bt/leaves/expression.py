@@ -48,7 +48,7 @@ class Gesture(SkillLeaf):
             if isinstance(names, str):
                 names = [names]
             return "play", {"sequence": [canonical_gesture(str(n)) for n in names]}
-        return "play", {"name": canonical_gesture(str(self.param("name")))}
+        return "play", {"name": canonical_gesture(str(self.param("play")))}
 
 
 def canonical_gesture(name: str) -> str:

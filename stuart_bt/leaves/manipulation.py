@@ -29,7 +29,7 @@ class Pick(_ObjectLeaf):
         world = self.ctx.blackboard.world
         label = str(self.param("object"))
         if world.held is not None:
-            raise LeafFailure(f"already holding {world.held!r}; release it first")
+            raise LeafFailure(f"already_holding: already holding {world.held!r}; release it first")
         return "pick", {"object": label, "arm": self.param("arm"), "robot_pose": self.robot_pose()}
 
     def on_done(self, result: dict[str, Any]) -> None:

@@ -1,0 +1,36 @@
+"""HTN planning for Stuart: a YAML task domain, a backtracking planner, plans that explain themselves.
+
+    from stuart_bt.htn import Planner, project_domain
+    from stuart_bt.htn.state import lab_world
+
+    domain = project_domain()                      # tasks/domain.yaml + tasks/hooks.py
+    plan = Planner(domain).plan("fetch(bottle, workbench)", domain.initial_state(lab_world()))
+    print(plan.explain())                          # the decomposition, methods chosen and rejected
+    for step in plan.primitives():                 # what the compiler turns into leaves
+        print(step.skill, step.skill_args)
+
+See docs/htn.md for the domain language and the semantics.
+"""
+
+from .domain import (
+    Domain,
+    DomainLoadError,
+    TaskArgumentError,
+    TaskCall,
+    load_domain,
+    load_domain_text,
+    parse_task_text,
+    project_domain,
+)
+from .explain import add_plan_command, render_tree
+from .hooks import Hook, HookRegistry
+from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, PlanningFailed, PlanStats, TaskNode
+from .planner import Planner
+from .state import State, lab_world
+
+__all__ = [
+    "Domain", "DomainLoadError", "Failure", "Hook", "HookRegistry", "MethodAttempt", "Plan", "PlanStats", "Planner",
+    "PlanningBudgetExceeded", "PlanningFailed", "State", "TaskArgumentError", "TaskCall", "TaskNode",
+    "add_plan_command", "lab_world", "load_domain", "load_domain_text", "parse_task_text", "project_domain",
+    "render_tree",
+]

@@ -1,0 +1,81 @@
+"""An utterance, start to end: wake filter, then grammar, then one result.
+
+This is the contract the CLI prints and other programs script against::
+
+    {"utterance": str, "wake": bool, "command": str, "intents": [TaskIntent...], "conversational": bool}
+
+- no wake phrase: ``wake`` false, ``command`` "", ``intents`` [], ``conversational`` false (the
+  robot was not spoken to, so there is nothing to answer either);
+- wake phrase and no command in what follows: ``conversational`` true (the text goes to the
+  conversation side: "Hey Stuart, what can you pick up?");
+- ``command`` is the text after the wake phrase, as written.
+
+Resolution against the map and the object labels is a separate step
+(:mod:`stuart_bt.language.resolve`): a parse never needs a map, and the same parse can be
+resolved against whichever map the robot is on.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from .grammar import Defaults, Grammar
+from .intents import TaskIntent
+from .wake import GREETINGS, WakeFilter
+
+
+@dataclass
+class ParseResult:
+    """What one utterance means to the robot."""
+
+    utterance: str
+    wake: bool = False
+    command: str = ""
+    intents: list[TaskIntent] = field(default_factory=list)
+    conversational: bool = False
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"utterance": self.utterance, "wake": self.wake, "command": self.command,
+                "intents": [i.to_dict() for i in self.intents], "conversational": self.conversational}
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), ensure_ascii=False)
+
+
+class Parser:
+    """Wake filter + grammar with one robot name. ``require_wake=False`` parses every utterance as
+    a command (a typed console, where nobody says "Hey Stuart"); ``wake`` is then reported as
+    found or not, but does not gate the grammar."""
+
+    def __init__(self, name: str = "Stuart", greetings: Iterable[str] = GREETINGS, *,
+                 wake_filter: WakeFilter | None = None, grammar: Grammar | None = None,
+                 defaults: Defaults | None = None, require_wake: bool = True) -> None:
+        self.wake_filter = wake_filter or WakeFilter(name, greetings)
+        vocatives = [w for w in self.wake_filter.name.lower().split() if w]
+        self.grammar = grammar or Grammar(defaults=defaults, vocatives=vocatives)
+        self.require_wake = require_wake
+
+    def parse(self, utterance: str) -> ParseResult:
+        """The result for one utterance (never raises on text: any string gives a result)."""
+        wake = self.wake_filter.match(utterance)
+        if not wake.woke:
+            if not self.require_wake:
+                intents = self.grammar.parse(utterance)
+                return ParseResult(utterance, False, utterance.strip(), intents, not intents)
+            return ParseResult(utterance)
+        intents = self.grammar.parse(wake.command) if wake.command else []
+        return ParseResult(utterance, True, wake.command, intents, not intents)
+
+
+_DEFAULT: Parser | None = None
+
+
+def parse(utterance: str) -> ParseResult:
+    """Parse with the default robot name ("Stuart")."""
+    global _DEFAULT
+    if _DEFAULT is None:
+        _DEFAULT = Parser()
+    return _DEFAULT.parse(utterance)

@@ -1,0 +1,16 @@
+"""The stuart_bt pytest plugin for this checkout (an installed stuart_bt also registers it
+through its ``pytest11`` entry point; registering twice is avoided) and pytester for the
+plugin's own tests."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest_plugins = ["pytester"]
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    from stuart_bt import pytest_plugin
+
+    if not config.pluginmanager.is_registered(pytest_plugin):
+        config.pluginmanager.register(pytest_plugin, "stuart_bt")

@@ -1,0 +1,232 @@
+"""The command grammar: each intent and its parameters, REP-103 signs, compounds, politeness,
+conversation, ellipsis and pronouns, and robustness. (The corpus test covers breadth; these
+pin down the rules docs/voice.md promises.)"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from stuart_bt import gestures
+from stuart_bt.language.grammar import Defaults, Grammar, parse_command, tokenize
+from stuart_bt.language.intents import ACTIONS, TaskIntent, confirmation
+
+PI = math.pi
+
+
+def one(text: str) -> TaskIntent:
+    got = parse_command(text)
+    assert len(got) == 1, f"{text!r} -> {got}"
+    return got[0]
+
+
+def shape(text: str) -> list[tuple[str, str]]:
+    return [(i.action, i.target) for i in parse_command(text)]
+
+
+# -- signs and units (REP-103) ----------------------------------------------------------------------
+@pytest.mark.parametrize("text,x,y", [
+    ("move forward two metres", 2, 0), ("go back two metres", -2, 0), ("move left 1 metre", 0, 1),
+    ("move right 1 metre", 0, -1), ("step back 50 cm", -0.5, 0), ("move 2 m to the left", 0, 2),
+])
+def test_moves_are_x_forward_y_left(text: str, x: float, y: float) -> None:
+    i = one(text)
+    assert (i.action, i.x, i.y, i.yaw, i.target) == ("move_relative", pytest.approx(x), pytest.approx(y), 0, "")
+
+
+@pytest.mark.parametrize("text,yaw", [
+    ("turn right 90 degrees", -PI / 2), ("turn left 90 degrees", PI / 2), ("turn clockwise 45 degrees", -PI / 4),
+    ("turn anticlockwise 45 degrees", PI / 4), ("rotate counter clockwise 30 degrees", PI / 6),
+    ("turn 90 degrees", PI / 2), ("turn right one hundred and eighty degrees", -PI),
+])
+def test_turns_are_counter_clockwise_positive(text: str, yaw: float) -> None:
+    i = one(text)
+    assert i.action == "turn_by_angle" and i.yaw == pytest.approx(yaw) and i.x == i.y == 0
+
+
+def test_turn_around_is_pi() -> None:
+    for text in ("turn around", "about face", "make a u-turn", "do a 180", "face the other way", "spin around"):
+        i = one(text)
+        assert (i.action, i.yaw, i.target) == ("turn_around", pytest.approx(PI), ""), text
+
+
+def test_an_explicit_angle_is_a_turn_by_that_angle_even_180() -> None:
+    assert one("turn 180 degrees").action == "turn_by_angle"
+
+
+# -- defaults ---------------------------------------------------------------------------------------
+def test_defaults_when_no_amount_is_said() -> None:
+    assert one("go forward").x == 1.0
+    assert one("back up").x == -1.0
+    assert one("take a step forward").x == 0.5
+    assert one("move forward a bit").x == 0.5
+    assert one("turn left").yaw == pytest.approx(PI / 2)
+    assert one("turn slightly right").yaw == pytest.approx(-math.radians(30))
+
+
+def test_defaults_are_configurable() -> None:
+    g = Grammar(defaults=Defaults(move_m=0.3, turn_deg=45))
+    assert g.parse("go forward")[0].x == 0.3
+    assert g.parse("turn left")[0].yaw == pytest.approx(PI / 4)
+
+
+# -- every intent -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("text,action,target", [
+    ("go to the kitchen", "navigate_to_marker", "kitchen"),
+    ("take me to the charging dock", "navigate_to_marker", "charging dock"),
+    ("head to station three", "navigate_to_marker", "station three"),
+    ("go home", "navigate_to_marker", "home"),
+    ("pick up the red cup", "pick_up", "red cup"),
+    ("pick the bottle up", "pick_up", "bottle"),
+    ("grab me an apple", "pick_up", "apple"),
+    ("find the book", "find", "book"),
+    ("look for my keys", "find", "keys"),
+    ("stop", "stop", ""),
+    ("freeze", "stop", ""),
+    ("don't move", "stop", ""),
+])
+def test_targets_are_spoken_lower_case_without_articles(text: str, action: str, target: str) -> None:
+    i = one(text)
+    assert (i.action, i.target) == (action, target)
+    assert i.x == i.y == i.yaw == 0
+
+
+@pytest.mark.parametrize("text,name", [
+    ("wave", "wave"), ("do a high wave", "wave"), ("wave hello", "wave"), ("give me a high five", "high five"),
+    ("clap your hands", "clap"), ("give us a round of applause", "clap"), ("hug me", "hug"),
+    ("shake my hand", "shake hand"), ("make a heart", "heart"), ("put your hands up", "hands up"),
+    ("raise your right hand", "right hand up"), ("blow a kiss", "two hand kiss"), ("do the x-ray pose", "x-ray"),
+    ("put your arms down", "release arm"), ("do the face wave", "face wave"), ("reject", "reject"),
+])
+def test_gestures_use_library_names(text: str, name: str) -> None:
+    i = one(text)
+    assert (i.action, i.target) == ("gesture", name)
+    assert gestures.lookup(name) is not None, "every gesture target plays something"
+
+
+def test_every_action_is_reachable() -> None:
+    said = ["go to the kitchen", "move forward", "turn left", "turn around", "pick up the cup", "wave", "stop",
+            "find the cup"]
+    assert [one(t).action for t in said] == list(ACTIONS)
+
+
+# -- compounds --------------------------------------------------------------------------------------
+@pytest.mark.parametrize("text", [
+    "go to the kitchen and then pick up the bottle", "go to the kitchen, then pick up the bottle",
+    "go to the kitchen and pick up the bottle", "go to the kitchen. After that pick up the bottle",
+    "first go to the kitchen then pick up the bottle", "go to the kitchen; pick up the bottle",
+    "go to the kitchen & pick up the bottle", "go to the kitchen followed by picking up the bottle",
+])
+def test_compound_forms(text: str) -> None:
+    assert shape(text) == [("navigate_to_marker", "kitchen"), ("pick_up", "bottle")]
+
+
+def test_object_and_place_lists_become_one_intent_each() -> None:
+    assert shape("pick up the salt and pepper") == [("pick_up", "salt"), ("pick_up", "pepper")]
+    assert shape("go to the kitchen, the bathroom and the entrance") == [
+        ("navigate_to_marker", "kitchen"), ("navigate_to_marker", "bathroom"), ("navigate_to_marker", "entrance")]
+
+
+def test_ellipsis_repeats_the_action_with_new_parameters() -> None:
+    got = parse_command("turn left, then right")
+    assert [round(i.yaw, 3) for i in got] == [round(PI / 2, 3), round(-PI / 2, 3)]
+    got = parse_command("go forward 2 m then left 1 m")
+    assert [(i.x, i.y) for i in got] == [(2, 0), (0, 1)]
+
+
+def test_pronouns_refer_to_what_was_named_before() -> None:
+    assert shape("find the cup and pick it up") == [("find", "cup"), ("pick_up", "cup")]
+    assert shape("go to the kitchen and then go there again") == [("navigate_to_marker", "kitchen")] * 2
+    # carrying what was just picked up is only the going
+    assert shape("grab the apple and bring it to the workbench") == [("pick_up", "apple"),
+                                                                     ("navigate_to_marker", "workbench")]
+    assert shape("pick it up") == []  # nothing to refer to
+
+
+def test_sources_destinations_and_purposes() -> None:
+    assert shape("bring me the bottle from the kitchen") == [("navigate_to_marker", "kitchen"), ("pick_up", "bottle")]
+    assert shape("pick up the cup from the table") == [("pick_up", "cup")]  # furniture is not a place to go
+    assert shape("take the book to the reading room") == [("pick_up", "book"), ("navigate_to_marker", "reading room")]
+    assert shape("search the kitchen for the cup") == [("navigate_to_marker", "kitchen"), ("find", "cup")]
+    assert shape("go to the kitchen to get a drink") == [("navigate_to_marker", "kitchen"), ("pick_up", "drink")]
+
+
+def test_but_first_puts_the_second_clause_first() -> None:
+    assert shape("go to the kitchen but first turn around") == [("turn_around", ""), ("navigate_to_marker", "kitchen")]
+
+
+def test_a_choice_is_not_a_plan() -> None:
+    assert shape("go to the kitchen or the bathroom") == [("navigate_to_marker", "kitchen")]
+
+
+def test_repeated_stops_are_one() -> None:
+    assert shape("stop, stop, stop!") == [("stop", "")]
+
+
+def test_raw_text_is_the_clause_as_written() -> None:
+    got = parse_command("Could you go to the Kitchen, then WAVE?")
+    assert [i.raw_text for i in got] == ["Could you go to the Kitchen", "WAVE"]
+
+
+# -- politeness and conversation --------------------------------------------------------------------
+@pytest.mark.parametrize("text", [
+    "could you please go to the kitchen", "can you go to the kitchen?", "would you mind going to the kitchen",
+    "please go to the kitchen", "I want you to go to the kitchen", "let's go to the kitchen",
+    "go to the kitchen, please", "would you be so kind as to go to the kitchen", "why don't you go to the kitchen",
+    "go to the kitchen will you", "you should go to the kitchen",
+])
+def test_polite_forms_are_commands(text: str) -> None:
+    assert shape(text) == [("navigate_to_marker", "kitchen")]
+
+
+@pytest.mark.parametrize("text", [
+    "do you like the kitchen?", "what can you pick up?", "the kitchen is nice", "can you tell me about the bottle?",
+    "I went to the kitchen", "where is the bottle", "would you like to go to the kitchen?",
+    "do you want to go to the kitchen and pick up the bottle?", "can I go to the kitchen", "how do I get there",
+    "don't go to the kitchen", "stop signs are red", "turn on the light", "pick a card", "take it easy", "go ahead",
+    "right.", "come here", "go to sleep", "can you pick things up?", "I said go to the kitchen",
+])
+def test_conversation_is_no_command(text: str) -> None:
+    assert parse_command(text) == []
+
+
+def test_a_question_ends_at_its_sentence() -> None:
+    assert shape("what a day. go to the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("great job, now wave") == [("gesture", "wave")]
+
+
+# -- robustness -------------------------------------------------------------------------------------
+def test_recogniser_noise() -> None:
+    assert shape("uh go to the uh kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("go go to the the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert one("move forward 2m").x == 2 and one("turn left 90°").yaw == pytest.approx(PI / 2)
+    assert shape("go. to. the kitchen.") == [("navigate_to_marker", "kitchen")]
+
+
+@pytest.mark.parametrize("text", ["", " ", "???", "\x00\x01", "and and and", "then", "🙂" * 50, "the " * 5000,
+                                  "go to " * 3000, "1" * 10_000, "'''", "1.2.3.4", "-", "stop" + "!" * 1000])
+def test_anything_parses_without_error(text: str) -> None:
+    assert isinstance(parse_command(text), list)
+
+
+def test_tokens_are_capped() -> None:
+    assert len(tokenize("go " * 10_000).toks) <= 200
+
+
+def test_vocatives_end_a_target() -> None:
+    assert [i.target for i in Grammar(vocatives=["stuart"]).parse("go to the kitchen stuart")] == ["kitchen"]
+
+
+def test_confirmation_sentences() -> None:
+    assert confirmation(one("go to the kitchen")) == "Navigating to kitchen"
+    assert confirmation(one("turn right 90 degrees")) == "Turning right 90 degrees"
+    assert confirmation(one("move forward 50 cm")) == "Moving forward 50 centimetres"
+    assert confirmation(one("stop")) == "Stopping"
+
+
+def test_intent_json_round_trip() -> None:
+    i = one("go back two metres")
+    assert TaskIntent.from_dict(i.to_dict()) == i
+    with pytest.raises(ValueError):
+        TaskIntent.from_dict({"action": "fly"})

@@ -1,0 +1,110 @@
+"""The wake filter: "Hey Stuart" as recognisers spell it, near-misses that must stay asleep,
+where the name may stand, the command left over, and a configurable name."""
+
+from __future__ import annotations
+
+import pytest
+
+from stuart_bt.language.wake import WakeFilter, key_distance, phonetic_key
+
+
+@pytest.fixture(scope="module")
+def wake() -> WakeFilter:
+    return WakeFilter()
+
+
+@pytest.mark.parametrize("heard", ["stuart", "stewart", "steward", "stuert", "stuard", "stewert", "stuwart",
+                                   "stu art", "stew art", "st uart", "Stuart", "STEWART"])
+def test_spellings_of_the_name_have_the_same_key(heard: str) -> None:
+    assert phonetic_key(heard.replace(" ", "")) == phonetic_key("stuart") == "STUART"
+
+
+@pytest.mark.parametrize("utterance", [
+    "Hey Stuart, go", "hey stewart go", "hey steward go", "hey stuert go", "hey swart go", "hey stu art go",
+    "a stuart go", "hey stuard go", "hay stewart go", "hi stuart go", "hello Stuart go", "ok stuart go",
+    "okay stuart go", "o.k. stuart go", "HEY STUART GO", "hey, Stuart! go", "heystuart go", "hey-stuart go",
+    "Hey Stuart's, go", "hey stuarts go", "yo stuart go", "excuse me stuart go",
+])
+def test_wakes_on_recogniser_variants(wake: WakeFilter, utterance: str) -> None:
+    m = wake.match(utterance)
+    assert m.woke, utterance
+    assert m.command.lower() == "go"
+
+
+@pytest.mark.parametrize("utterance", [
+    "hey start the engine", "hey stewardess, where is my seat?", "Stuart Little is a film", "hey star",
+    "hey smart speaker", "hey stupid", "hey sweetheart", "hey stewie", "hey stu", "hey sturt", "hey stuff",
+    "hey siri", "I told Stuart to go", "ask stuart to stop", "stuart go to the kitchen", "hello there", "",
+    "   ", "?!", "heystart",
+])
+def test_near_misses_stay_asleep(wake: WakeFilter, utterance: str) -> None:
+    assert not wake.match(utterance).woke, utterance
+
+
+def test_swart_wakes_but_start_does_not_although_both_are_one_letter_away() -> None:
+    # the reason for a phonetic key: losing the "u" sound costs more than losing a "t"
+    assert key_distance(phonetic_key("swart"), "STUART") < key_distance(phonetic_key("start"), "STUART")
+    assert WakeFilter().match("hey swart stop").woke and not WakeFilter().match("hey start stop").woke
+
+
+@pytest.mark.parametrize("utterance,command", [
+    ("um, hey Stuart, go to the kitchen", "go to the kitchen"),
+    ("uh oh hey there Stuart turn left", "turn left"),
+    ("so hey stuart wave", "wave"),
+    ("ok so hey stuart wave", "wave"),
+])
+def test_filler_before_the_wake_phrase(wake: WakeFilter, utterance: str, command: str) -> None:
+    m = wake.match(utterance)
+    assert m.woke and m.command == command
+
+
+def test_a_bare_name_wakes_only_with_a_pause_after_it(wake: WakeFilter) -> None:
+    assert wake.match("Stuart, stop!").command == "stop!"
+    assert wake.match("Stuart.").woke and wake.match("Stuart").woke
+    assert not wake.match("Stuart stop").woke
+    assert not WakeFilter(bare_name=False).match("Stuart, stop!").woke
+
+
+def test_command_keeps_its_spelling_and_a_final_question_mark(wake: WakeFilter) -> None:
+    m = wake.match("Hey Stuart... What can you pick up?")
+    assert m.command == "What can you pick up?"
+    assert m.phrase == "Hey Stuart" and m.heard_name == "stuart" and m.distance == 0.0
+    assert wake.match("Hey Stuart").command == ""
+
+
+def test_wake_phrase_only_at_the_start(wake: WakeFilter) -> None:
+    assert not wake.match("go to the kitchen hey stuart").woke
+    assert not wake.match("the robot is called stuart").woke
+
+
+def test_name_and_greetings_are_configurable() -> None:
+    robbie = WakeFilter(name="Robbie", greetings=("hey", "yo"))
+    assert robbie.match("hey robby, stop").command == "stop"
+    assert robbie.match("yo robbie stop").woke
+    assert not robbie.match("hey stuart stop").woke
+    assert not robbie.match("hello robbie stop").woke  # not one of its greetings
+    only_hi = WakeFilter(greetings=("hi",))
+    assert only_hi.match("hi stuart go").woke and not only_hi.match("hey stuart go").woke
+
+
+def test_two_word_names_and_short_names() -> None:
+    mary = WakeFilter(name="Mary Jane")
+    assert mary.match("hey mary jane, wave").command == "wave"
+    max_ = WakeFilter(name="Max")
+    assert max_.match("hey max stop").woke
+    assert not max_.match("hey mix stop").woke  # short names need the exact sound key
+
+
+def test_tolerance_is_a_knob() -> None:
+    assert not WakeFilter(tolerance=0.0).match("hey swart go").woke
+    assert WakeFilter(tolerance=1.0).match("hey start go").woke
+
+
+def test_no_letters_in_the_name_is_refused() -> None:
+    with pytest.raises(ValueError):
+        WakeFilter(name="!!")
+
+
+def test_long_and_odd_input_is_fine(wake: WakeFilter) -> None:
+    assert wake.match("hey stuart " + "go " * 100_000).woke
+    assert not wake.match("\x00\ufffd" * 1000).woke
