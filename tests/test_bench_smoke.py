@@ -28,6 +28,11 @@ EXPECTED = [
     "sim.tour.arrival_error_max",
     "sim.tour.arrival_yaw_error_max",
     "sim.render.fps",
+    *(f"parse.grammar.{figure}" for figure in ("p50", "p99", "p99_cold", "p99_vs_budget", "accuracy")),
+    *(f"htn.mission.{m}" for m in ("navigate_to_marker", "move_relative", "turn_by_angle", "turn_around", "pick_up",
+                                    "gesture", "stop", "find_known", "find_look_around", "fetch", "bring", "tour",
+                                    "greet", "go_and_say")),
+    "htn.compound20", "htn.small.fetch", "htn.small.compound20",
 ]
 
 
