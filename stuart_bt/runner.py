@@ -125,7 +125,7 @@ class Session:
 
         speed = self.options.speed if self.options.speed is not None else (1.0 if self.options.viewer else 0.0)
         self._world_log = open(self.run_dir / "world.stderr.log", "wb")
-        self.world = launch_world(seed=self.options.seed, speed=speed, stderr=self._world_log,
+        self.world = launch_world(seed=self.options.seed, speed=speed, stderr=self._world_log, hold=True,
                                   record=str(self.options.record) if self.options.record else None,
                                   record_fps=self.options.record_fps, viewer=self.options.viewer,
                                   start=(start.x, start.y, start.yaw))

@@ -217,13 +217,12 @@ def test_a_compound_utterance_runs_its_intents_in_order_each_acknowledged() -> N
 
 
 def test_a_later_intent_that_cannot_follow_an_earlier_one_is_explained() -> None:
-    assert failure_of("pick_up(apple); gesture(wave)") == (
-        "no plan for pick_up(apple), gesture(wave):\n"
+    assert failure_of("pick_up(apple); gesture(moonwalk)") == (
+        "no plan for pick_up(apple), gesture(moonwalk):\n"
         "  pick_up(apple): no method works\n"
         "    ✗ already_holding: held == obj is false (held=null, obj='apple')\n"
         "    ✗ known: worked, then a later task failed:\n"
-        "      gesture(wave): no method applies\n"
-        "        ✗ hands_free: held == null is false (held='apple')\n"
+        "      play_holding(moonwalk): precondition not met: hook known_gesture(name='moonwalk') returned false\n"
         "    ✗ search_first: obj not in objects is false "
         "(obj='apple', objects={bottle, apple, cup, screwdriver, book})\n"
         "    ✗ hands_full: held != null is false (held=null)")
@@ -248,8 +247,9 @@ def test_an_unknown_object_with_nowhere_to_look_fails_with_the_reason() -> None:
     assert "look_steps > 0 is false (look_steps=0)" in failure_of("fetch(orange, kitchen)", lab(look_steps=0))
 
 
-def test_gestures_need_free_arms_and_a_known_name() -> None:
-    assert "hands_free: held == null is false (held='cup')" in failure_of("gesture(wave)", lab(held="cup"))
+def test_gestures_play_with_something_in_hand_and_need_a_known_name() -> None:
+    plan = Planner(project_domain()).plan("gesture(wave)", lab(held="cup"))
+    assert [(n.name, n.skill_args) for n in plan.primitives()][-1] == ("play_holding", {"play": "wave"})
     assert "hook known_gesture(name='moonwalk') returned false" in failure_of("gesture(moonwalk)")
 
 

@@ -71,6 +71,7 @@ def test_hooks_move_the_person_and_an_object_during_the_run(stuart_sim):
 
     result.assert_success()
     assert result.initial_world["base"] == {"x": 3.5, "y": 1.5, "yaw": 0.0}  # start= put the robot there
+    assert result.timeline[0]["t"] < 0.1  # the world waited at t = 0 for the run to start
     assert result.state_at(0.25)["person"] is None
     assert result.final_world["person"] == {"x": 2.0, "y": -1.0}
     result.assert_object_at("bottle", 4.3, 1.2, z=0.855, tolerance=0.01)  # dropped onto the table top

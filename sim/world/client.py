@@ -193,7 +193,8 @@ def launch_world(scene: str = "lab", seed: int = 0, speed: float = 0.0, record: 
                  record_fps: float = 10.0, viewer: bool = False, map_out: str | None = None, loc_noise: bool = False,
                  robot: str | os.PathLike[str] | None = None, start: tuple[float, float, float] | None = None,
                  run_dir: str | os.PathLike[str] | None = None, timeout: float = 60.0,
-                 stderr: IO[Any] | int | None = None, extra_args: tuple[str, ...] = ()) -> WorldProcess:
+                 stderr: IO[Any] | int | None = None, extra_args: tuple[str, ...] = (),
+                 hold: bool = False) -> WorldProcess:
     """Start ``python -m stuart_bt.sim.world`` and wait for its READY line.
 
     The socket goes into ``run_dir`` (default: a new private temporary directory, removed again
@@ -219,6 +220,8 @@ def launch_world(scene: str = "lab", seed: int = 0, speed: float = 0.0, record: 
         argv += ["--map-out", str(map_out)]
     if loc_noise:
         argv.append("--loc-noise")
+    if hold:
+        argv.append("--hold")
     if robot is not None:
         argv += ["--robot", str(robot)]
     if start is not None:

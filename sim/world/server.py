@@ -502,8 +502,9 @@ class Server:
     answered in between."""
 
     def __init__(self, world: World, socket_path: str, clock: ClockFile, speed: float = 0.0,
-                 watch_stdin: bool = True, viewer: Any = None, out_fd: int = 1) -> None:
+                 watch_stdin: bool = True, viewer: Any = None, out_fd: int = 1, hold: bool = False) -> None:
         self.world = world
+        self.hold = hold  # take no step until a clock driver has attached (a run starts at t = 0)
         self.socket_path = socket_path
         self.clock = clock
         self.speed = speed
@@ -551,7 +552,9 @@ class Server:
         while not self._should_stop():
             now_wall = time.monotonic()
             t = world.t
-            if clock.driven() and t >= clock.permit:
+            if self.hold and clock.driven():
+                self.hold = False
+            if self.hold or (clock.driven() and t >= clock.permit):
                 held_by_permit = True
                 self._serve(0.0)
                 time.sleep(idle)
@@ -729,6 +732,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--scene", default="lab", help="scene name (sim/scenes/NAME.xml) or an .xml path")
     parser.add_argument("--robot", default=None, help="robot MJCF (default sim/models/g1.xml)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the one random generator (noise)")
+    parser.add_argument("--hold", action="store_true",
+                        help="take no physics step until a clock driver attaches (runs start at t = 0)")
     parser.add_argument("--speed", type=float, default=None,
                         help="cap sim time at SPEED x wall time (0: no cap; default 0, or 1 with --viewer)")
     parser.add_argument("--record", default=None, help="record the chase camera for the whole run (.mp4 or .gif)")
@@ -793,7 +798,7 @@ def main(argv: list[str] | None = None) -> int:
     reason = "start-up failed"
     try:
         server = Server(world, options.socket, clock, speed, watch_stdin=not options.ignore_stdin, viewer=viewer,
-                        out_fd=out_fd)
+                        out_fd=out_fd, hold=options.hold)
         if options.record:
             world.start_recording(options.record, options.record_fps)
         ready = {"type": "ready", "socket": options.socket, "clock": options.clock, "timestep": world.dt,

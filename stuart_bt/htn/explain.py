@@ -114,6 +114,7 @@ def add_plan_command(subparsers: Any) -> argparse.ArgumentParser:
                         "or a JSON list of TaskIntents "
                         "'[{\"action\": \"navigate_to_marker\", \"target\": \"kitchen\"}]'")
     p.add_argument("--json", action="store_true", help="print the plan (or the failure) as JSON")
+    p.add_argument("--show", action="store_true", help="also draw the behaviour tree the plan compiles to")
     p.add_argument("--state", metavar="FILE",
                    help="start state: a JSON object of state variables over the domain's defaults "
                         "(default: lab markers and objects, robot at --start)")
@@ -158,8 +159,17 @@ def cmd_plan(args: argparse.Namespace) -> int:
     planner = Planner(domain, backtracking=not args.no_backtracking,
                       max_expansions=args.max_expansions or DEFAULT_MAX_EXPANSIONS,
                       time_limit=args.time_limit or DEFAULT_TIME_LIMIT)
+    tasks: Any = args.task
+    if _is_utterance(args.task, domain):
+        from ..language import Parser
+
+        parsed = Parser(require_wake=False).parse(args.task)
+        if not parsed.intents:
+            print(f"stuart-bt: no command in {args.task!r} (it reads as conversation)", file=sys.stderr)
+            return 1
+        tasks = [intent.to_dict() for intent in parsed.intents]
     try:
-        plan = planner.plan(args.task, state)
+        plan = planner.plan(tasks, state)
     except TaskArgumentError as e:
         print(f"stuart-bt: {e}", file=sys.stderr)
         return 1
@@ -187,4 +197,18 @@ def cmd_plan(args: argparse.Namespace) -> int:
     print(plan.explain(rejections=not args.no_rejections, ascii=args.ascii))
     print("\nsteps:")
     print(steps_text(steps))
+    if args.show:
+        from ..mission.compiler import show
+
+        print("\ntree:")
+        print(show(plan, "ascii" if args.ascii else "unicode"))
     return 0
+
+
+def _is_utterance(text: str, domain: Any) -> bool:
+    """Task text looks like ``fetch(bottle, workbench)``, a task name, or JSON; anything else is
+    taken as what someone said ("Hey Stuart, go to the kitchen")."""
+    stripped = text.strip()
+    if stripped.startswith(("[", "{")) or "(" in stripped:
+        return False
+    return not all(domain.get(part.strip()) is not None for part in stripped.split(";") if part.strip())

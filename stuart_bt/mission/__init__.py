@@ -1,0 +1,1 @@
+"""Voice missions: utterances -> plans -> compiled trees, run one after another (docs/missions.md)."""

@@ -1,0 +1,109 @@
+"""Utterance -> what the mission executor should do: a control command, tasks, or conversation.
+
+The grammar (stuart_bt.language) knows the robot's eight intents; a running mission also needs
+words *about* the mission, which the grammar treats as conversation or drops:
+
+- **stop**: a ``stop`` intent first ("stop", "halt", "freeze", "never mind") halts everything and
+  clears the queue; commands after it ("stop, go to the bathroom") start a new mission, so
+  "cancel that and ..." / "forget that, ..." / "never mind, ..." replace the current mission;
+- **continue**: "continue", "resume", "carry on", "keep going", "go on" resume a halted mission;
+- **replace**: a command that says "instead" replaces the current mission instead of queueing;
+- a ``stop`` later in a compound ("turn left and then stop") stays a task of the domain.
+
+Utterances without the wake phrase are ignored (unless the parser does not require it); woken
+utterances without a command are conversation.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from ..language import Parser, ParseResult, TaskIntent
+
+IGNORE, STOP, CONTINUE, TASKS, CONVERSATION = "ignore", "stop", "continue", "tasks", "conversation"
+
+_FILLER = r"(?:please|ok(?:ay)?|now|then|and|so|just|,|\s)*"
+_CONTINUE = re.compile(rf"^{_FILLER}(?:continue|resume|carry on|keep going|go on|proceed|carry on with that)"
+                       rf"(?:\s+(?:please|with (?:it|that|the mission|what you were doing)))?\W*$", re.IGNORECASE)
+_INSTEAD_LEAD = re.compile(r"^\s*(?:no,?\s*)?(?:actually,?\s*)?instead,?\s*(?:of that,?\s*)?", re.IGNORECASE)
+_INSTEAD_TAIL = re.compile(r",?\s*instead(?: of that)?\s*([.!?]*)\s*$", re.IGNORECASE)
+
+
+@dataclass
+class Command:
+    """What one utterance asks of the mission executor.
+
+    ``kind``: ignore | stop | continue | tasks | conversation. ``intents`` are the tasks to plan
+    (for ``tasks``, and after a ``stop`` that goes on: "stop, go to the bathroom"). ``replace``:
+    the tasks replace the current mission instead of waiting behind it.
+    """
+
+    kind: str
+    parse: ParseResult
+    intents: list[TaskIntent] = field(default_factory=list)
+    replace: bool = False
+
+    @property
+    def text(self) -> str:
+        return self.parse.command or self.parse.utterance
+
+
+def interpret(parser: Parser, utterance: str) -> Command:
+    """Classify one utterance (never raises on text)."""
+    wake = parser.wake_filter.match(utterance)
+    if not wake.woke and parser.require_wake:
+        return Command(IGNORE, ParseResult(utterance))
+    text = (wake.command if wake.woke else utterance).strip()
+    stripped, instead = _strip_instead(text)
+    intents = parser.grammar.parse(stripped) if stripped else []
+    result = ParseResult(utterance, wake.woke, text, intents, not intents)
+    if intents and intents[0].action == "stop":
+        rest = [i for i in intents[1:] if i.action != "stop"]
+        return Command(STOP, result, rest, replace=bool(rest))
+    if intents:
+        return Command(TASKS, result, intents, replace=instead)
+    if _CONTINUE.match(stripped):
+        return Command(CONTINUE, result)
+    return Command(CONVERSATION, result)
+
+
+def _strip_instead(text: str) -> tuple[str, bool]:
+    """The command without "instead" (which the grammar does not know), and whether it was there."""
+    lead = _INSTEAD_LEAD.match(text)
+    if lead and lead.end() > 0 and "instead" in lead.group(0).lower():
+        return text[lead.end():], True
+    tail = _INSTEAD_TAIL.search(text)
+    if tail:
+        return text[:tail.start()] + tail.group(1), True
+    return text, False
+
+
+# -- conversation -------------------------------------------------------------------------------------
+@dataclass
+class Reply:
+    """What the robot answers to conversation: a sentence, and gestures to play with it."""
+
+    text: str
+    gestures: list[str] = field(default_factory=list)
+
+
+class Conversation(Protocol):
+    """The conversation side (a language model later). ``reply`` may be slow: the mission
+    executor calls it off the tick thread and speaks the reply when it comes. ``context`` holds
+    what the robot knows right now (``held``, ``at``, ``busy``, ``mission``)."""
+
+    def reply(self, text: str, context: dict[str, Any]) -> Reply: ...
+
+
+class CannedConversation:
+    """The ``none`` backend: one polite sentence that says what the robot can do."""
+
+    name = "none"
+
+    def reply(self, text: str, context: dict[str, Any]) -> Reply:
+        return Reply("Sorry, I can only follow commands for now, like go to the kitchen or pick up the bottle.")
+
+
+CONVERSATIONS = {"none": CannedConversation}

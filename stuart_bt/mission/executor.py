@@ -1,0 +1,572 @@
+"""The mission executor: a long-running robot that takes utterances and runs missions one by one.
+
+One :class:`MissionExecutor` owns one set of skill daemons (and, on the sim backend, the MuJoCo
+world) for its whole life, through a :class:`~stuart_bt.runner.Session`; each mission is planned
+from the world state *when it starts*, compiled (:mod:`.compiler`) and ticked by its own
+:class:`~stuart_bt.executor.Executor` on the session's clock, so daemons are never restarted
+between missions.
+
+``submit(utterance)`` is thread-safe (the ROS bridge and the web view call it from their own
+threads) and returns at once; a worker thread runs the queue:
+
+- tasks while busy wait in the queue, or replace the current mission when they say so;
+- ``stop`` asks the running executor to stop (honoured at the start of the next tick: the tree
+  halts, every daemon receives stop) and clears the queue; ``continue`` re-plans the halted
+  mission's remaining tasks from the current world state;
+- a failed leaf is repaired by re-planning the lowest failed compound task that still plans from
+  the current state (an object that was not where memory said is forgotten first, so the robot
+  looks for it again), at most ``max_repairs`` times; then the robot says why, in one sentence;
+- an unknown place or object is said ("I don't know where the garage is") and nothing moves;
+- conversation goes to a :class:`~.commands.Conversation` on a separate thread; its reply is
+  spoken.
+
+Everything the robot says goes through the speak leaf of a small tree, so speech is on the same
+event stream and report as the missions. Events: ``utterance``, ``reply`` and ``mission``
+(``phase``: queued, started, replaced, stopped, resumed, repaired, finished).
+"""
+
+from __future__ import annotations
+
+import itertools
+import threading
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from importlib.resources import files
+from pathlib import Path
+from typing import Any, Self
+
+from py_trees.common import Status
+
+from ..executor import Executor, RunOutcome
+from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentError, TaskNode, project_domain
+from ..htn.domain import Domain, TaskCall
+from ..htn.state import lab_world
+from ..language import Parser, Resolver, TaskIntent
+from ..leaves import RunContext, make_leaf
+from ..runner import RunOptions, Session
+from ..tree.builder import build
+from ..tree.spec import Location, NodeSpec, TreeSpec
+from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, CannedConversation, Command, Conversation, interpret
+from .compiler import CompiledMission, compile_plan
+
+OBJECT_FAULTS = ("not_found", "unreachable")  # failures that mean: the object is not where memory says
+
+
+@dataclass
+class MissionOptions:
+    backend: str = "dry"
+    rate: float = 20.0
+    speed: float | None = None  # dry: clock seconds per wall second
+    start: str | None = None  # marker the robot starts at (default entrance)
+    require_wake: bool = True
+    max_repairs: int = 2  # per mission
+    max_duration: float | None = None  # clock seconds per tree run
+    daemon_options: dict[str, dict[str, Any]] = field(default_factory=dict)
+    log: Path | None = None
+    report: Path | None = None
+    seed: int = 0
+
+
+@dataclass(eq=False)
+class Mission:
+    """One accepted command: the tasks asked for and how far they got."""
+
+    id: int
+    utterance: str
+    calls: list[TaskCall]
+    texts: list[str]  # what was said for each call, for explanations
+    status: str = "queued"  # queued | running | stopped | replaced | succeeded | failed
+    done: int = 0  # calls finished
+    repairs: int = 0
+    resumed: bool = False
+    reason: str | None = None
+    cancelled: str | None = None  # "stopped" | "replaced": asked to end while running
+    stop_tick: int | None = None  # executor tick when the stop was asked for
+    halt_tick: int | None = None  # executor tick count when it halted
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"id": self.id, "utterance": self.utterance, "tasks": [str(c) for c in self.calls],
+                "status": self.status, "done": self.done, "repairs": self.repairs, "reason": self.reason}
+
+
+@dataclass
+class _Say:
+    """Something to say that is not a mission (reply, unknown target, nothing to continue)."""
+
+    text: str
+    why: str
+
+
+class MissionExecutor:
+    """Utterances in, missions out. Use as a context manager (daemons always shut down)."""
+
+    def __init__(self, options: MissionOptions | None = None, *, conversation: Conversation | None = None,
+                 domain: Domain | None = None, name: str = "Stuart") -> None:
+        self.options = options or MissionOptions()
+        self.parser = Parser(name, require_wake=self.options.require_wake)
+        self.domain = domain or project_domain()
+        self.conversation = conversation or CannedConversation()
+        markers = Path(str(files("stuart_bt.sim").joinpath("maps/lab_markers.json")))
+        self.markers_file = markers
+        self.lab = lab_world(markers, start=self.options.start or "entrance")
+        self.resolver = Resolver(self.lab.markers, tuple(self.lab.objects))
+        self.session = Session(_all_families_spec(str(markers)), RunOptions(
+            backend=self.options.backend, rate=self.options.rate, speed=self.options.speed,
+            start=self.options.start, log=self.options.log, daemon_options=self.options.daemon_options,
+            seed=self.options.seed))
+        self.missions: list[Mission] = []
+        self.halted: Mission | None = None
+        self._queue: deque[Mission | _Say] = deque()
+        self._current: Mission | _Say | None = None
+        self._executor: Executor | None = None
+        self._cond = threading.Condition()
+        self._closing = False
+        self._ids = itertools.count(1)
+        self._worker: threading.Thread | None = None
+        self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
+        self._pending_replies = 0
+
+    # -- life cycle ---------------------------------------------------------------------------------
+    def start(self) -> Self:
+        self.session.start()
+        self.world.objects = dict(self.lab.objects)  # the robot's memory of where things are
+        self._worker = threading.Thread(target=self._work, name="missions", daemon=True)
+        self._worker.start()
+        return self
+
+    def __enter__(self) -> Self:
+        try:
+            return self.start()
+        except BaseException:
+            self.close()
+            raise
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        with self._cond:
+            self._closing = True
+            self._queue.clear()
+            if self._executor is not None:
+                self._executor.request_stop("shutting down")
+            self._cond.notify_all()
+        if self._worker is not None:
+            self._worker.join(timeout=30)
+        self._talk.shutdown(wait=False, cancel_futures=True)
+        if self.options.report:
+            from ..report import write_report
+            write_report(self.report(), self.options.report)
+        self.session.close()
+
+    @property
+    def events(self):
+        return self.session.events
+
+    @property
+    def world(self):
+        return self.session.blackboard.world
+
+    @property
+    def busy(self) -> bool:
+        with self._cond:
+            return self._current is not None or bool(self._queue) or self._pending_replies > 0
+
+    def wait_idle(self, timeout: float | None = None) -> bool:
+        """Wait (wall time) until nothing is queued, running or being answered."""
+        with self._cond:
+            return self._cond.wait_for(lambda: not (self._current or self._queue or self._pending_replies),
+                                       timeout=timeout)
+
+    def report(self) -> dict[str, Any]:
+        report = self.session.recorder.build(
+            status=self._overall_status(), reason=None, tree="<missions>", backend=self.options.backend,
+            ticks=0, final_pose=self.world.pose.to_dict(), held=self.world.held)
+        report["missions"] = [m.to_dict() for m in self.missions]
+        return report
+
+    def _overall_status(self) -> str:
+        if not self.missions:
+            return "NOT_RUN"
+        last = self.missions[-1].status
+        return {"succeeded": "SUCCESS", "stopped": "STOPPED"}.get(last, "FAILURE")
+
+    # -- input --------------------------------------------------------------------------------------
+    def submit(self, utterance: str) -> Command:
+        """Take one utterance (any thread); returns at once with what it was understood as."""
+        command = interpret(self.parser, utterance)
+        self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
+                            intents=[i.to_dict() for i in command.intents])
+        if command.kind == IGNORE:
+            return command
+        if command.kind == STOP:
+            self._stop(command)
+        elif command.kind == CONTINUE:
+            self._continue()
+        elif command.kind == CONVERSATION:
+            self._converse(command.text)
+        if command.intents:
+            self._accept(utterance, command.intents, replace=command.replace)
+        return command
+
+    def _stop(self, command: Command) -> None:
+        with self._cond:
+            dropped = [j for j in self._queue if isinstance(j, Mission)]
+            self._queue.clear()
+            for m in dropped:
+                m.status, m.reason = "stopped", "stop requested"
+                self.events.publish("mission", id=m.id, phase="stopped", reason="queue cleared")
+            current = self._current
+            if isinstance(current, Mission) and current.cancelled is None:
+                current.cancelled = "replaced" if command.replace else "stopped"
+                if self._executor is not None:
+                    current.stop_tick = self._executor.ticks
+                    self._executor.request_stop(command.text)
+            elif self._executor is not None:
+                self._executor.request_stop(command.text)
+
+    def _continue(self) -> None:
+        with self._cond:
+            mission, self.halted = self.halted, None
+            if mission is None:
+                self._queue.appendleft(_Say("There is nothing to continue.", "continue"))
+            else:
+                mission.resumed, mission.cancelled, mission.status = True, None, "queued"
+                self._queue.appendleft(mission)
+                self.events.publish("mission", id=mission.id, phase="resumed", done=mission.done)
+            self._cond.notify_all()
+
+    def _converse(self, text: str) -> None:
+        context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None}
+        with self._cond:
+            self._pending_replies += 1
+
+        def answer() -> None:
+            try:
+                reply = self.conversation.reply(text, context)
+                self.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
+                with self._cond:
+                    self._queue.appendleft(_Say(reply.text, "reply"))
+            finally:
+                with self._cond:
+                    self._pending_replies -= 1
+                    self._cond.notify_all()
+
+        self._talk.submit(answer)
+
+    def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> None:
+        calls: list[TaskCall] = []
+        unknown: list[str] = []
+        for intent in intents:
+            resolution = self.resolver.resolve(intent) if intent.action != "gesture" else None
+            if resolution is not None and not resolution.ok:
+                unknown.append(resolution.say())
+                continue
+            if resolution is not None:
+                intent = TaskIntent(**{**intent.to_dict(), "target": resolution.name})
+            try:
+                calls.append(self.domain.to_call(intent.to_dict()))
+            except TaskArgumentError as e:
+                unknown.append(f"I cannot do that: {e}.")
+        with self._cond:
+            if unknown:  # say so; nothing of this command moves the robot
+                self._queue.appendleft(_Say(" ".join(unknown), "unknown"))
+                self._cond.notify_all()
+                return
+            mission = Mission(next(self._ids), utterance, calls, [i.raw_text or i.action for i in intents])
+            self.missions.append(mission)
+            current = self._current
+            if replace and isinstance(current, Mission) and current.status == "running":
+                if current.cancelled is None:
+                    current.cancelled = "replaced"
+                    if self._executor is not None:
+                        current.stop_tick = self._executor.ticks
+                        self._executor.request_stop("replaced")
+                self._queue.appendleft(mission)
+            else:
+                self._queue.append(mission)
+            self.events.publish("mission", id=mission.id, phase="queued", tasks=[str(c) for c in calls],
+                                replace=replace)
+            self._cond.notify_all()
+
+    # -- the worker ---------------------------------------------------------------------------------
+    def _work(self) -> None:
+        while True:
+            with self._cond:
+                self._cond.wait_for(lambda: self._queue or self._closing)
+                if self._closing:
+                    return
+                job = self._current = self._queue.popleft()
+            try:
+                if isinstance(job, _Say):
+                    self._say(job.text)
+                else:
+                    self._run_mission(job)
+            except Exception as e:  # noqa: BLE001 - a bug in one mission must not deafen the robot
+                self.events.publish("warning", message=f"mission worker: {type(e).__name__}: {e}")
+                if isinstance(job, Mission):
+                    job.status, job.reason = "failed", str(e)
+            finally:
+                with self._cond:
+                    self._current = None
+                    self._executor = None
+                    self._cond.notify_all()
+
+    def _say(self, text: str) -> RunOutcome:
+        spec = TreeSpec(NodeSpec("speak", "say", "say", _where(), {"text": text, "timeout": 120.0}), "<say>")
+        outcome, _, _ = self._run_tree(spec, None)
+        return outcome
+
+    def _run_mission(self, m: Mission) -> None:
+        if self.halted is not None and self.halted is not m:
+            self.halted = None  # a new mission: the halted one is not resumed any more
+        m.status = "running"
+        self.events.publish("mission", id=m.id, phase="started", tasks=[str(c) for c in m.calls[m.done:]],
+                            resumed=m.resumed)
+        compiled, index, unplannable = self._plan_remaining(m)
+        while compiled is not None:
+            outcome, succeeded, failed_path = self._run_tree(compiled.spec, m)
+            m.done = max(m.done, _calls_done(compiled, index, succeeded))
+            if outcome.status == "SUCCESS":
+                break
+            if m.cancelled == "replaced" or self._closing:
+                self._finish(m, "replaced", "replaced by a new command")
+                return
+            if outcome.status == "STOPPED" or m.cancelled == "stopped":
+                m.halt_tick = outcome.ticks
+                m.cancelled = None
+                self.halted = m
+                self._finish(m, "stopped", outcome.reason)
+                return
+            reason = self._failure_reason(failed_path, outcome)
+            if m.repairs >= self.options.max_repairs or failed_path is None:
+                self._explain_failure(m, compiled, failed_path, reason)
+                return
+            m.repairs += 1
+            compiled, index = self._repair(m, compiled, index, failed_path)
+            if compiled is None:
+                self._explain_failure(m, None, failed_path, reason)
+                return
+            self.events.publish("mission", id=m.id, phase="repaired", failed=failed_path, reason=reason,
+                                repairs=m.repairs, tasks=[compiled.tasks[p].call for p in compiled.top])
+        if unplannable is not None:
+            self._say(unplannable)
+            self._finish(m, "failed", unplannable)
+            return
+        self._finish(m, "succeeded", None)
+
+    def _finish(self, m: Mission, status: str, reason: str | None) -> None:
+        m.status, m.reason = status, reason
+        self.events.publish("mission", id=m.id, phase="stopped" if status == "stopped" else
+                            "replaced" if status == "replaced" else "finished", status=status, reason=reason,
+                            repairs=m.repairs)
+
+    # -- planning -----------------------------------------------------------------------------------
+    def _state(self):
+        return self.domain.initial_state(self.world)
+
+    def _plan_remaining(self, m: Mission) -> tuple[CompiledMission | None, list[int], str | None]:
+        """Plan the calls not done yet. When the whole list cannot be planned, the longest prefix
+        that can is run and the reason for the next call is said afterwards."""
+        calls = m.calls[m.done:]
+        planner = Planner(self.domain, acks=not m.resumed)
+        preface = "Carrying on." if m.resumed else None
+        first_error: str | None = None
+        for k in range(len(calls), 0, -1):
+            try:
+                plan = planner.plan(calls[:k], self._state())
+            except (PlanningFailed, PlanningBudgetExceeded, TaskArgumentError) as e:
+                if first_error is None:
+                    first_error = _sentence(m.texts[m.done + k - 1] if m.done + k - 1 < len(m.texts) else "",
+                                            calls[k - 1], e)
+                continue
+            compiled = compile_plan(plan, preface=preface, markers_file=str(self.markers_file))
+            return compiled, list(range(m.done, m.done + k)), first_error
+        if first_error is None:
+            first_error = "I have nothing to do."
+        return None, [], first_error
+
+    def _repair(self, m: Mission, compiled: CompiledMission, index: list[int],
+                failed_path: str) -> tuple[CompiledMission | None, list[int]]:
+        """Re-plan the lowest failed compound task that plans from the current state, followed by
+        what was left after it at every level, then the mission's remaining calls."""
+        leaf = compiled.task_at(failed_path)
+        top_path = next((p for p in compiled.top if failed_path == p or failed_path.startswith(p + "/")), None)
+        if leaf is None or top_path is None:
+            return None, []
+        pos = compiled.top.index(top_path)
+        call_index = index[pos]
+        self._forget_misplaced(leaf, failed_path)
+        later = [(_call(compiled.tasks[p]), index[pos + 1 + i]) for i, p in enumerate(compiled.top[pos + 1:])]
+        later += [(c, j) for j, c in enumerate(m.calls) if j > max(index)]
+        later_calls = [c for c, _ in later]
+        later_index = [j for _, j in later]
+        planner = Planner(self.domain, acks=False)
+        compound = leaf.parent
+        while compound is not None and compound.kind != "mission":
+            calls = [_call(compound), *_following(compound)]
+            try:
+                plan = planner.plan(calls + later_calls, self._state())
+            except (PlanningFailed, PlanningBudgetExceeded, TaskArgumentError):
+                compound = compound.parent
+                continue
+            repaired = compile_plan(plan, markers_file=str(self.markers_file))
+            return repaired, [call_index] * len(calls) + later_index
+        rest = [j for j in range(call_index, len(m.calls)) if j == call_index or j > max(index)]
+        try:  # last resort: the whole task that was asked for, again from here
+            plan = planner.plan([m.calls[j] for j in rest], self._state())
+        except (PlanningFailed, PlanningBudgetExceeded, TaskArgumentError):
+            return None, []
+        return compile_plan(plan, markers_file=str(self.markers_file)), rest
+
+    def _forget_misplaced(self, task: TaskNode, failed_path: str) -> None:
+        """A pick or find that failed because the object was not there: forget where it was, so
+        the re-plan looks for it."""
+        reason = self._leaf_reason(failed_path) or ""
+        label = (task.skill_args or {}).get("object")
+        if task.skill in ("pick", "find") and label and reason.split(":")[0] in OBJECT_FAULTS:
+            self.world.objects.pop(label, None)
+
+    # -- running one tree ---------------------------------------------------------------------------
+    def _run_tree(self, spec: TreeSpec, mission: Mission | None) -> tuple[RunOutcome, set[str], str | None]:
+        """Build and tick one tree on the session's daemons; the paths that succeeded and the
+        leaf whose failure failed the tree."""
+        session = self.session
+        ctx = RunContext(session.clock, self.events, session.blackboard, session.supervisor, Path.cwd())
+        root = build(spec, lambda node: make_leaf(node, ctx), session.clock, session.blackboard)
+        executor = Executor(root, session.clock, self.events, rate=self.options.rate)
+        if session.supervisor is not None:
+            executor.pre_tick.append(session.supervisor.poll)
+            executor.on_halt.append(self._stop_daemons)
+        succeeded: set[str] = set()
+
+        def track(event: Any) -> None:
+            if event.kind == "status" and event.data.get("new") == "SUCCESS" and event.path:
+                succeeded.add(event.path)
+
+        unsubscribe = self.events.subscribe(track)
+        with self._cond:
+            self._executor = executor
+            if mission is not None and mission.cancelled is not None:
+                executor.request_stop(mission.cancelled)
+        try:
+            outcome = executor.run(self.options.max_duration)
+        finally:
+            unsubscribe()
+            with self._cond:
+                self._executor = None
+        failed = _failed_leaf(root) if outcome.status == "FAILURE" else None
+        return outcome, succeeded, failed
+
+    def _stop_daemons(self) -> None:
+        """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""
+        supervisor = self.session.supervisor
+        assert supervisor is not None
+        for request in supervisor.stop_all():
+            supervisor.wait(request, timeout=1.0)
+
+    # -- explanations -------------------------------------------------------------------------------
+    def _leaf_reason(self, path: str | None) -> str | None:
+        outcomes = self.session.blackboard.get("outcomes", None) or {}
+        entry = outcomes.get(path) if path else None
+        return entry.get("reason") if entry else None
+
+    def _failure_reason(self, path: str | None, outcome: RunOutcome) -> str:
+        return self._leaf_reason(path) or outcome.reason or "something went wrong"
+
+    def _explain_failure(self, m: Mission, compiled: CompiledMission | None, path: str | None, reason: str) -> None:
+        idx = min(m.done, len(m.texts) - 1)
+        what = m.texts[idx] if m.texts else "do that"
+        detail = reason.split(": ", 1)[1] if ": " in reason and reason.split(":")[0].isidentifier() else reason
+        sentence = f"Sorry, I could not {_clause(what)}: {detail.rstrip('.')}."
+        self._say(sentence)
+        self._finish(m, "failed", sentence)
+
+
+# -- helpers --------------------------------------------------------------------------------------------
+def _all_families_spec(markers_file: str) -> TreeSpec:
+    """A stand-in tree naming one leaf of every skill family, so the Session starts every daemon."""
+    where = _where()
+    leaves = [NodeSpec("speak", "speak", "daemons/speak", where, {"text": ""}),
+              NodeSpec("navigate", "navigate", "daemons/navigate", where, {"dx": 0}),
+              NodeSpec("gesture", "gesture", "daemons/gesture", where, {"play": "clap"}),
+              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"})]
+    return TreeSpec(NodeSpec("sequence", "daemons", "daemons", where, {}, leaves), "<missions>",
+                    markers_file=markers_file)
+
+
+def _where() -> Location:
+    return Location("<mission>", 1, 1)
+
+
+def _failed_leaf(root: Any) -> str | None:
+    """Follow the failure down: the last failed child of every failed node ends at the leaf."""
+    node = root
+    while node.children:
+        failed = [c for c in node.children if c.status == Status.FAILURE]
+        if not failed:
+            break
+        node = failed[-1]
+    return getattr(node, "spec_path", None) if not node.children else None
+
+
+def _following(node: TaskNode) -> list[TaskCall]:
+    """What was still to do after ``node`` inside its top-level task: the later siblings at
+    every level up (acknowledgements left out: they were said already)."""
+    out: list[TaskCall] = []
+    while node.parent is not None and node.parent.kind != "mission":
+        out += [_call(s) for s in _after(node) if not s.ack]
+        node = node.parent
+    return out
+
+
+def _after(node: TaskNode) -> list[TaskNode]:
+    siblings = node.parent.children if node.parent is not None else []
+    return siblings[siblings.index(node) + 1:]
+
+
+def _call(node: TaskNode) -> TaskCall:
+    return TaskCall(node.name, tuple(node.args.values()))
+
+
+def _calls_done(compiled: CompiledMission, index: list[int], succeeded: set[str]) -> int:
+    """How many of the mission's calls are finished: a call is done when every top-level entry
+    of the tree that belongs to it succeeded."""
+    done = 0
+    for i, path in enumerate(compiled.top):
+        if path not in succeeded:
+            break
+        if i + 1 == len(compiled.top) or index[i + 1] != index[i]:
+            done = index[i] + 1
+    return done
+
+
+def _clause(text: str) -> str:
+    text = text.strip().rstrip(".!?")
+    return text[0].lower() + text[1:] if text else "do that"
+
+
+def _sentence(text: str, call: TaskCall, error: Exception) -> str:
+    """One spoken sentence for a task that cannot be planned."""
+    cause = _why(error.failure, call.name) if isinstance(error, PlanningFailed) else None
+    return f"Sorry, I cannot {_clause(text) if text else str(call)}: {cause or str(error).splitlines()[0]}."
+
+
+HUMAN_CLAUSES = {"held == null": "my hands are full", "held == obj": "I am not holding it",
+                 "place in markers": "I do not know that place", "obj in objects": "I do not know where it is"}
+
+
+def _why(failure: Any, task: str) -> str | None:
+    """The first rejection of the failed ``task`` inside a nested planning failure, in words."""
+    stack = [failure]
+    while stack:
+        f = stack.pop()
+        if f.task.split("(")[0] == task:
+            for attempt in f.attempts:
+                if not attempt.chosen and attempt.reason is not None and not hasattr(attempt.reason, "attempts"):
+                    clause = str(attempt.reason).split(" is false")[0].strip()
+                    return HUMAN_CLAUSES.get(clause, str(attempt.reason))
+            return f.message
+        stack.extend(a.reason for a in f.attempts if hasattr(a.reason, "attempts"))
+    return None
