@@ -186,8 +186,8 @@ def test_the_default_lab_has_a_bottle_in_the_kitchen_and_a_cup_on_the_workbench(
 def test_an_object_out_of_reach_is_refused_before_any_motion(daemon):
     pick = daemon("pick")
     far = run(pick, "pick", object="bottle", robot_pose={"x": 0.0, "y": 0.0, "yaw": 0.0})
-    assert (far.error_code, far.reason) == ("unreachable", "bottle is 4.7 m away; reach is 1.2 m")
-    assert far.accepted_data is None and far.result == {"distance": 4.7461, "reach": 1.2}
+    assert (far.error_code, far.reason) == ("unreachable", "bottle is 4.2 m away; reach is 1.2 m")
+    assert far.accepted_data is None and far.result == {"distance": 4.2408, "reach": 1.2}
     assert run(pick, "state").result["held"] is None
 
 
@@ -203,15 +203,15 @@ def test_pick_holds_release_puts_down_in_front_and_both_refuse_the_wrong_state(d
     started = time.monotonic()
     grasp = run(pick, "pick", object="bottle", robot_pose=KITCHEN)
     assert time.monotonic() - started >= 6.0 / FACTOR
-    assert grasp.result == {"object": "bottle", "arm": "right", "position": {"x": 4.55, "y": 1.35, "z": 0.78}}
+    assert grasp.result == {"object": "bottle", "arm": "right", "position": {"x": 4.01, "y": 1.38, "z": 0.855}}
     assert [d["phase"] for d in progress_of(pick, grasp)][-1] == "lift"
     assert run(pick, "pick", object="apple", robot_pose=KITCHEN).error_code == "already_holding"
     assert run(pick, "release", arm="left", robot_pose=KITCHEN).error_code == "not_holding"
     put = run(pick, "release", robot_pose={"x": 4.0, "y": 1.5, "yaw": math.pi / 2})
-    assert put.result == {"object": "bottle", "arm": "right", "position": {"x": 4.0, "y": 1.9, "z": 0.78}}
+    assert put.result == {"object": "bottle", "arm": "right", "position": {"x": 4.0, "y": 1.9, "z": 0.855}}
     again = run(pick, "release", robot_pose=KITCHEN)
     assert (again.error_code, again.reason) == ("not_holding", "the robot holds nothing")
-    assert run(pick, "state").result["objects"]["bottle"] == {"x": 4.0, "y": 1.9, "z": 0.78}
+    assert run(pick, "state").result["objects"]["bottle"] == {"x": 4.0, "y": 1.9, "z": 0.855}
 
 
 def test_find_reports_position_and_distance_after_a_short_search(daemon):

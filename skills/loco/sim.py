@@ -135,11 +135,26 @@ class SimLoco(LocoBackend):
             waypoints = [(start.x, start.y), (gx, gy)]
         else:
             try:
-                waypoints = plan(self.grid, (start.x, start.y), (gx, gy))
+                waypoints = self._plan_with_final_approach(start, gx, gy)
             except PlanningError as e:
                 where = f" ({goal.marker})" if goal.marker else ""
                 raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}") from None
         return SimWalk(self, waypoints, None if gyaw is None else wrap(gyaw), goal)
+
+    def _plan_with_final_approach(self, start: Pose, gx: float, gy: float) -> list[tuple[float, float]]:
+        """A* to the goal; a goal closer to furniture than the planning margin (standing at a
+        table to pick) is reached by planning to the nearest roomy spot and then a short straight
+        final approach checked against the thinner margin, as a robot docks."""
+        try:
+            return plan(self.grid, (start.x, start.y), (gx, gy), snap=0.0)
+        except PlanningError:
+            if not self.near_grid.free(*self.near_grid.cell(gx, gy)):
+                raise
+        waypoints = plan(self.grid, (start.x, start.y), (gx, gy))  # snaps the goal onto free space
+        snapped = self.grid.centre(*self.grid.nearest_free(*self.grid.cell(gx, gy), int(0.3 / self.grid.resolution)))
+        if not self.near_grid.segment_free(snapped, (gx, gy)):
+            raise PlanningError(f"({gx:.2f}, {gy:.2f}) is too close to an obstacle to approach")
+        return [*waypoints[:-1], snapped, (gx, gy)]
 
     def turn(self, angle: float) -> Activity:
         start = Pose.from_dict(self.refresh()["base"])
