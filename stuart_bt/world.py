@@ -14,6 +14,8 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .jsonfile import read_json
+
 
 @dataclass
 class Pose:
@@ -93,12 +95,7 @@ class MarkerFileError(ValueError):
 def load_markers(path: str | Path) -> dict[str, Marker]:
     """Read a marker file: ``{"frame": "map", "markers": {name: {x, y, yaw, display_name}}}``."""
     path = Path(path)
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise MarkerFileError(f"{path}: marker file not found") from None
-    except json.JSONDecodeError as e:
-        raise MarkerFileError(f"{path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
+    doc = read_json(path, MarkerFileError, "marker file")
     entries = doc.get("markers") if isinstance(doc, dict) else None
     if not isinstance(entries, dict):
         raise MarkerFileError(f"{path}: expected an object with a 'markers' mapping")

@@ -5,6 +5,6 @@ dry daemon never loads a simulator or a vendor SDK.
 """
 
 BACKENDS: dict[str, str] = {
-    "sim": "stuart_bt.skills.gesture.sim:SimGesture",
     "dry": "stuart_bt.skills.gesture.dry:DryGesture",
+    "sim": "stuart_bt.skills.gesture.sim:SimGesture",
 }

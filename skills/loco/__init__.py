@@ -5,7 +5,6 @@ dry daemon never loads a simulator or a vendor SDK.
 """
 
 BACKENDS: dict[str, str] = {
-    "sim": "stuart_bt.skills.loco.sim:SimLoco",
     "dry": "stuart_bt.skills.loco.dry:DryLoco",
     "sim": "stuart_bt.skills.loco.sim:SimLoco",
 }

@@ -5,6 +5,6 @@ dry daemon never loads a simulator or a vendor SDK.
 """
 
 BACKENDS: dict[str, str] = {
-    "sim": "stuart_bt.skills.pick.sim:SimPick",
     "dry": "stuart_bt.skills.pick.dry:DryPick",
+    "sim": "stuart_bt.skills.pick.sim:SimPick",
 }

@@ -20,6 +20,7 @@ from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
+from ..jsonfile import read_json
 from ..world import KnownObject, Pose, WorldState, load_markers
 
 ARRIVAL_TOLERANCE = 0.5  # metres: within this of a marker the robot counts as being there (thesis)
@@ -103,14 +104,7 @@ class State(MutableMapping[str, Any]):
     def load(cls, path: str | Path) -> State:
         """A state from a JSON object of variables, e.g. ``{"at": "kitchen", "held": null}``."""
         path = Path(path)
-        try:
-            doc = json.loads(path.read_text(encoding="utf-8"))
-        except FileNotFoundError:
-            raise StateFileError(f"{path}: state file not found") from None
-        except json.JSONDecodeError as e:
-            raise StateFileError(f"{path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
-        except (OSError, UnicodeDecodeError) as e:
-            raise StateFileError(f"{path}: cannot read: {e}") from None
+        doc = read_json(path, StateFileError, "state file")
         if not isinstance(doc, dict):
             raise StateFileError(f"{path}: a state file holds one JSON object of state variables")
         return cls(doc)
