@@ -19,11 +19,11 @@ $(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik]"
+	$(PIP) -e ".[test,bench,sim,ik,llm]"
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik,ros]"
+	$(PIP) -e ".[test,bench,sim,ik,llm,ros]"
 	touch $@
 
 system-deps:

@@ -24,7 +24,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import htn, ik, parse, roundtrip, sim, tick_overhead
+from . import htn, ik, llm, mission, parse, roundtrip, sim, tick_overhead
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -34,6 +34,8 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     sim.NAME: sim.run,
     htn.NAME: htn.run,
     parse.NAME: parse.run,
+    mission.NAME: mission.run,
+    llm.NAME: llm.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")

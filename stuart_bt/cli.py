@@ -17,6 +17,7 @@ from . import __version__
 from .gesture_cli import add_gesture_commands
 from .htn import add_plan_command
 from .language.cli import add_parse_command
+from .mission.chat import add_chat_command
 from .mission.cli import add_mission_command
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
@@ -216,6 +217,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_parse_command(sub)
     add_plan_command(sub)
     add_mission_command(sub)
+    add_chat_command(sub)
 
     p = sub.add_parser("schema", help="print the JSON Schema of tree files (for editors)")
     p.add_argument("-o", "--output", metavar="FILE")

@@ -33,6 +33,9 @@ EXPECTED = [
                                     "gesture", "stop", "find_known", "find_look_around", "fetch", "bring", "tour",
                                     "greet", "go_and_say")),
     "htn.compound20", "htn.small.fetch", "htn.small.compound20",
+    *(f"mission.{figure}.{q}" for figure in ("utterance_to_first_command", "stop_to_all_daemons")
+      for q in ("p50", "p99")),
+    "llm.first_token", "llm.reply", "llm.cold_first_token",
 ]
 
 

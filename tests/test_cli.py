@@ -234,7 +234,7 @@ def write_tree(tmp: Path, name: str, body: str) -> Path:
 
 # -- help ----------------------------------------------------------------------------------------------
 COMMANDS = [[], ["validate"], ["show"], ["run"], ["bench"], ["gesture"], ["gesture", "list"], ["gesture", "record"], ["gesture", "show"], ["gesture", "play"],
-            ["parse"], ["plan"], ["mission"], ["schema"]]
+            ["parse"], ["plan"], ["mission"], ["chat"], ["schema"]]
 
 
 @pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "stuart-bt")

