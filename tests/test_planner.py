@@ -51,3 +51,10 @@ def test_no_route_when_the_doorway_is_closed():
 def test_off_the_map_is_refused():
     with pytest.raises(PlanningError, match="off the map"):
         plan(room_with_wall(), (1.0, 0.5), (9.0, 0.5))
+
+
+def test_a_start_docked_inside_the_margin_still_plans_with_an_exact_goal():
+    grid = room_with_wall()
+    docked = (2.96, 0.5)  # in the (uninflated) wall cells: as a robot docked inside a planning margin
+    points = plan(grid, docked, (1.0, 0.5), snap=0.0)
+    assert points[0] == docked and points[-1] == (1.0, 0.5)

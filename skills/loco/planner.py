@@ -69,12 +69,13 @@ class Grid:
         return True
 
 
-def plan(grid: Grid, start: tuple[float, float], goal: tuple[float, float], snap: float = 0.3) -> list[tuple[float, float]]:
-    """Waypoints from ``start`` to ``goal`` (both included). A start or goal within ``snap``
-    metres of free space is moved onto it; farther inside an obstacle is a :class:`PlanningError`."""
-    snap_cells = int(snap / grid.resolution)
-    s = _endpoint(grid, start, snap_cells, "start")
-    g = _endpoint(grid, goal, snap_cells, "goal")
+def plan(grid: Grid, start: tuple[float, float], goal: tuple[float, float], snap: float = 0.3,
+         start_snap: float = 0.3) -> list[tuple[float, float]]:
+    """Waypoints from ``start`` to ``goal`` (both included). A goal within ``snap`` metres of free
+    space (a start within ``start_snap``: the robot may stand docked at a table) is moved onto it;
+    farther inside an obstacle is a :class:`PlanningError`."""
+    s = _endpoint(grid, start, int(start_snap / grid.resolution), "start")
+    g = _endpoint(grid, goal, int(snap / grid.resolution), "goal")
     cells = _astar(grid, s, g)
     if cells is None:
         raise PlanningError(f"no path from ({start[0]:.2f}, {start[1]:.2f}) to ({goal[0]:.2f}, {goal[1]:.2f})")
