@@ -68,6 +68,7 @@ SPLITS: dict[str, tuple[str, ...]] = {
     "lookfor": ("look", "for"), "okay": ("ok",), "alright": ("ok",), "estop": ("e", "stop"),
     "anticlockwise": ("anticlockwise",), "counterclockwise": ("anticlockwise",),
     "metres": ("metres",),
+    "gimme": ("give", "me"), "lemme": ("let", "me"), "gonna": ("going", "to"),
 }
 
 # -- lexicon -----------------------------------------------------------------------------------------
@@ -78,7 +79,7 @@ CONDITIONS = frozenset({"until", "till", "unless", "if", "while", "whenever", "b
 BOUNDARY = frozenset({",", ".", ";", "!", "?", "&", "and", "then", "but", "plus", "or", "afterwards",
                       "afterward", "after", "before", "once", "when", "finally", "lastly", "followed"})
 DETERMINERS = frozenset({"the", "a", "an", "your", "my", "our", "this", "that", "these", "those", "some",
-                         "his", "her", "their", "its", "any", "yonder"})
+                         "his", "her", "their", "its", "any", "yonder", "both", "either"})
 PRONOUNS = frozenset({"it", "them", "that", "this", "those", "these", "one", "that one", "this one", "thing"})
 OBJECT_PRONOUNS = frozenset({"me", "us", "him", "her", "them", "everyone", "everybody", "you", "yourself"})
 GENERIC = frozenset({"things", "stuff", "objects", "object", "items", "item", "anything", "something", "everything",
@@ -96,7 +97,7 @@ NP_STOP = BOUNDARY | frozenset({
     "across", "along", "towards", "toward", "through", "until", "till", "unless", "if", "while", "so",
     "because", "as", "without", "asap", "ok", "gently", "instead", "also", "real", "fast", "safely",
     "straight", "right", "yourself", "which", "who", "where", "whose", "thats", "will", "would", "can",
-    "could", "since", "when", "once", "like",
+    "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -104,7 +105,8 @@ TRAILING = frozenset({"please", "now", "quickly", "slowly", "carefully", "immedi
                       "thanks", "thank", "you", "ok", "asap", "gently", "instead", "also", "fast", "safely",
                       "right", "away", "straight", "real", "quick", "for", "me", "us", "as", "well", "if", "can",
                       "could", "will", "would", "possible", "buddy", "mate", "pal", "robot", "friend", "then",
-                      "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over"})
+                      "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over", "shall",
+                      "we", "yeah", "alright"})
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
                 "which", "whose", "whom", "whatever", "wat"})
@@ -161,7 +163,13 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("if", "you", "can"), ("if", "you", "would"), ("could", "you", "maybe"), ("can", "you", "maybe"),
     ("i", "would", "appreciate", "it", "if", "you", "could"), ("id", "appreciate", "it", "if", "you", "could"),
     ("keep",), ("continue", "to"), ("carry", "on"), ("start",), ("start", "to"), ("begin", "to"), ("begin",),
-    ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
+    ("what", "i", "need", "is", "for", "you", "to"), ("what", "i", "want", "is", "for", "you", "to"),
+    ("what", "id", "like", "is", "for", "you", "to"), ("what", "i", "would", "like", "is", "for", "you", "to"),
+    ("all", "i", "need", "is", "for", "you", "to"), ("all", "i", "want", "is", "for", "you", "to"),
+    ("what", "i", "need", "you", "to", "do", "is"), ("what", "i", "want", "you", "to", "do", "is"),
+    ("what", "id", "like", "you", "to", "do", "is"), ("all", "you", "need", "to", "do", "is"),
+    ("see", "if", "you", "can"), ("see", "if", "you", "could"), ("check", "if", "you", "can"),
+    ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
@@ -292,6 +300,17 @@ STRONG_VERBS = frozenset({"go", "turn", "move", "walk", "head", "pick", "grab", 
                           "halt", "freeze", "search", "bring"})
 
 
+# a verb followed by one of its particles starts a new command inside a noun phrase ("... the
+# kitchen look for the apple"); as a pair these are not read as nouns ("look" alone may be)
+VERB_PARTICLES = frozenset({
+    ("look", "for"), ("search", "for"), ("hunt", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
+    ("step", "forward"), ("hold", "on"), ("hang", "on"), ("wait", "there"), ("wait", "for"), ("stay", "there"),
+    ("take", "a"), ("turn", "around"), ("spin", "around"), ("face", "the"), ("shake", "hands"),
+    ("give", "me"), ("hand", "me"), ("bring", "me"), ("get", "me"), ("fetch", "me"), ("grab", "me"),
+    ("move", "forward"), ("move", "back"), ("come", "back"), ("head", "back"), ("head", "to"), ("head", "over"),
+})
+
+
 def _gerunds(verbs: Iterable[str]) -> dict[str, str]:
     """ing-forms of the known verbs ("turning" -> "turn", "stopping" -> "stop", "waving" ->
     "wave"): "would you mind turning left" and "stop moving" read like the plain verb."""
@@ -307,6 +326,29 @@ def _gerunds(verbs: Iterable[str]) -> dict[str, str]:
 
 
 GERUNDS = _gerunds(ALL_VERBS)
+
+
+def _past(verbs: Iterable[str]) -> dict[str, str]:
+    """Past forms of the known verbs ("picked" -> "pick", "grabbed" -> "grab", "found" ->
+    "find"), read as the verb only in a perfect subordinate clause ("when/once/after you've",
+    "... you have") or after "once you": "once you've picked up the bottle, head to the dock".
+    Elsewhere a past verb tells a story ("when you went to the kitchen, was it clean?")."""
+    out: dict[str, str] = {}
+    for v in verbs:
+        if len(v) < 2:
+            continue
+        out[v + "d" if v.endswith("e") else v + "ed"] = v
+        out[v + v[-1] + "ed"] = v
+        if v.endswith("y"):
+            out[v[:-1] + "ied"] = v
+    out.update({"went": "go", "gone": "go", "found": "find", "got": "get", "gotten": "get", "took": "take",
+                "taken": "take", "brought": "bring", "came": "come", "ran": "run", "held": "hold", "stood": "stand",
+                "gave": "give", "given": "give", "made": "make", "spun": "spin", "shook": "shake", "sought": "seek",
+                "stopped": "stop", "caught": "catch"})
+    return out
+
+
+PAST = _past(ALL_VERBS)
 _SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS))
 
 
@@ -469,11 +511,24 @@ def _np(s: _State, i: int) -> tuple[list[str], int]:
             break
         if j > i and t in STRONG_VERBS:
             break
+        if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
+            break
+        if t == "back" and j > i and toks[j - 1] not in DETERMINERS and (
+                j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
+                or toks[j + 1] in ("here", "there", "over")):
+            break  # "bring the book back to the entrance", "put it back"
         j += 1
     words = toks[i:j]
     while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS):
         words = words[1:]
     return words, j
+
+
+def _no_noun(words: list[str]) -> bool:
+    """A cut-off phrase with no noun: a lone determiner ("go to the"), or a verb and its
+    indirect object ("give me give me")."""
+    return (len(words) == 1 and words[0] in DETERMINERS) or (
+        len(words) == 2 and words[0] in ALL_VERBS and words[1] in OBJECT_PRONOUNS)
 
 
 def _object(s: _State, words: list[str]) -> str | None:
@@ -484,7 +539,7 @@ def _object(s: _State, words: list[str]) -> str | None:
     text = " ".join(words)
     if text in PRONOUNS:
         return s.last_object or s.topic or None  # "pick it up" with nothing named before: no command
-    if words[0] in ("it", "them", "him", "her", "me", "us"):
+    if words[0] in ("it", "them", "him", "her", "me", "us") or _no_noun(words):
         return None  # "take it easy", "bring it on"
     if text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no"):
         return None
@@ -498,7 +553,8 @@ def _place(s: _State, words: list[str]) -> str | None:
     text = " ".join(words)
     if text in ("there", "that place", "it", "that"):
         return s.last_place or s.topic or None
-    if text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here":
+    if (text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here"
+            or _no_noun(words)):
         return None
     return text
 
@@ -923,6 +979,12 @@ def _stop(s: _State, i: int) -> Result:
         return None
     if verb == "quit" and nxt not in ("it", "that", "moving", "move", "now", "", "please"):
         return None
+    if verb in ("wait", "stay") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(j + 1) in (
+            "the", "your", "my", "our", "station"):
+        words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay
+        place = _place(s, words)
+        if place is not None and words[-1] not in SURFACES:
+            return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], _skip_rest(s, e)
     while j < n and toks[j] not in BOUNDARY:
         if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
             break
@@ -1187,8 +1249,8 @@ def _polite(s: _State, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in (("next",),) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
-            break
+        if p in (("next",), ("like",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
+            break  # "like" is a filler only before a verb: "could you like go to the kitchen"
         i += len(p)
     return i
 
@@ -1199,6 +1261,10 @@ REQUESTS: tuple[tuple[str, ...], ...] = tuple(
 WANTS: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("id", "like"), ("i", "need"),
                                       ("we", "want"), ("id", "love"), ("i", "would", "love"), ("we", "would", "like"),
                                       ("wed", "like"), ("i", "could", "use"), ("i", "could", "do", "with"))
+# wishes that ask for an object when a plain noun phrase ends the clause ("I'd like the apple,
+# please"); "I want ..." and "I need ..." stay gestures only ("I need the bathroom")
+WANTS_OBJECT = frozenset({("i", "would", "like"), ("id", "like"), ("we", "would", "like"), ("wed", "like"),
+                          ("i", "could", "use")})
 _REQUEST_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _r in sorted(REQUESTS + WANTS, key=lambda p: (-len(p), p)):
     _REQUEST_BY_FIRST[_r[0]] = _REQUEST_BY_FIRST.get(_r[0], ()) + (_r,)
@@ -1215,9 +1281,13 @@ def _request(s: _State, i: int) -> Result:
     g = s.phrase_at(k, _GESTURE_BY_FIRST)
     if g is not None and (len(g) > 1 or g[0] != "five"):
         return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], _skip_gesture_tail(s, k + len(g))
-    if p in WANTS or s.at(j) in ("to", "some", "help", "a") and s.at(j + 1) in ("help", "hand", "minute", "word"):
+    if s.at(j) in ("to", "some", "help", "a") and s.at(j + 1) in ("help", "hand", "minute", "word"):
+        return None
+    if p in WANTS and not (p in WANTS_OBJECT and s.at(j) in ("the", "a", "an", "that", "this", "my")):
         return None
     words, e = _np(s, j)
+    if p in WANTS and (not _done(s, e) or any(len(w) > 4 and w.endswith("ed") for w in words[1:])):
+        return None  # "I'd like the kitchen cleaned": no object handed over
     target = _object(s, words)
     return ([(PICK, target, 0.0, 0.0, 0.0)], e) if target else None
 
@@ -1260,6 +1330,8 @@ def _clause(s: _State, i: int) -> Result:
         j = i + len(sp)
         if t in ("easy", "steady", "enough") and not _done(s, j):
             return None
+        if sp[0] in ("dont", "do") and (s.at(j) in TO_WORDS or s.at(j) in ("near", "over", "across", "through")):
+            return None  # "don't walk into the bathroom": a negated command, not "don't move"
         while j < n and toks[j] not in BOUNDARY:
             j += 1
         return [(STOP, "", 0.0, 0.0, 0.0)], j
@@ -1368,6 +1440,8 @@ def _skip_rest(s: _State, j: int) -> int:
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
                 break
+            if (t, s.at(j + 1)) in VERB_PARTICLES and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
+                break
         j += 1
     return j
 
@@ -1393,7 +1467,7 @@ class Grammar:
 
     def parse_tokens(self, text: str, tokens: Tokens) -> list[TaskIntent]:
         """Like :meth:`parse` on the tokens :func:`tokenize` made of ``text``."""
-        toks = tokens.toks
+        toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
         s = _State(toks, len(toks), self.defaults, self.stop_words)
         n = s.n
         out: list[TaskIntent] = []
@@ -1424,10 +1498,16 @@ class Grammar:
                 # "when you find it, pick it up": the clause says what happens first; it is kept
                 # unless it repeats the intent just before ("look for the bottle and when you
                 # find it ...")
+                perfect = toks[i + 1] == "youve" or t == "once"
                 i += 2 if toks[i + 1] in ("you", "youve", "youre", "u") else 1
                 subordinate = True
+                if i < n and toks[i] == "have" and toks[i - 1] == "you":
+                    i += 1  # "once you have picked up ..."
+                    perfect = True
                 if i >= n:
                     break
+                if perfect and toks[i] in PAST:
+                    toks[i] = PAST[toks[i]]  # "when you've found it": the verb ("when you went": a story)
             start = i
             got = _clause(s, i)
             if got is None:
