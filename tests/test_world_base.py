@@ -127,6 +127,20 @@ def test_path_to_the_kitchen_on_a_straight_line(world):
     assert max(speeds) == pytest.approx(0.6, abs=0.01)
 
 
+def test_a_short_step_back_is_walked_backwards_without_turning_around(world):
+    kitchen = MARKERS["kitchen"]
+    world.call("set_base", x=kitchen["x"], y=kitchen["y"], yaw=0.0)
+    world.call("base_path", waypoints=[[kitchen["x"] - 0.3, kitchen["y"]]], final_yaw=0.0, max_speed=0.6)
+    yaws, speeds = [], []
+    state = wait_for(world, lambda s: yaws.append(s["base"]["yaw"]) or speeds.append(s["base_velocity"]["vx"])
+                     or s["base_status"] == "arrived")
+    base = state["base"]
+    assert math.hypot(base["x"] - (kitchen["x"] - 0.3), base["y"] - kitchen["y"]) <= 0.10
+    assert max(abs(y) for y in yaws) < math.radians(10)  # it never turned round
+    assert min(speeds) == pytest.approx(-0.3, abs=0.01)  # backwards, at the dead band speed
+    assert state["arrival_error"]["within_tolerance"] is True
+
+
 def test_path_through_the_bathroom_doorway(world):
     route = [(6.5, 0.5), (6.65, 1.4), (6.65, 2.5), (7.5, 3.0)]  # station_4 -> doorway -> bathroom
     assert _segments_clear(route)

@@ -56,12 +56,19 @@ REALIGN = math.radians(60.0)  # heading error during pursuit that makes it stop 
 MAX_RETRIES = 3  # approaches after a stop outside the tolerance
 
 
+REVERSE_MAX = 0.6  # m: a leg this short that lies behind the robot is walked backwards
+REVERSE_ANGLE = math.radians(120)  # "behind": the leg's direction this far from the heading
+REVERSE_SPEED = 0.3  # m/s: stepping backwards, at the controller's dead band
+
+
 class PathFollower:
     """The navigation service: one path, followed leg by leg.
 
     A *leg* is a stretch of the path without sharp corners. Each leg is driven as: turn in
     place toward it (``align``), pure pursuit at full speed (``track``), and a brake to a stop
     at its end. The speed command is always either >= the dead band or zero, never in between.
+    A short leg behind the robot (stepping back from a table) is walked backwards at the dead
+    band speed instead of turning around twice; the person check then looks backwards.
     """
 
     def __init__(self, start: Point, waypoints: Sequence[Point], final_yaw: float | None, max_speed: float,
@@ -84,6 +91,7 @@ class PathFollower:
         self.s = 0.0  # progress along the current leg
         self.phase = "align" if self.legs else "final_yaw"
         self.retries = 0
+        self.reverse = False  # walking the current leg backwards
         self.blocked = False
         self._clear_since: float | None = None
         self._after_brake = "leg_end"  # what a brake leads to: the leg's end, or a new turn
@@ -115,7 +123,10 @@ class PathFollower:
         leg = self.legs[self.leg]
         self.s = leg.project(x, y, self.s)
         tx, ty = leg.point_at(self.s + LOOKAHEAD)
-        error = wrap(math.atan2(ty - y, tx - x) - yaw)
+        direction = math.atan2(ty - y, tx - x)
+        if self.s == 0.0:  # decide once per leg, before moving along it
+            self.reverse = leg.length <= REVERSE_MAX and abs(wrap(direction - yaw)) > REVERSE_ANGLE
+        error = wrap(direction - self._facing(yaw))
         if abs(error) <= ALIGN_DONE:
             self.phase = "track"
             return 0.0, self._turn_rate(error), False
@@ -127,7 +138,7 @@ class PathFollower:
         remaining = leg.length - self.s
         tx, ty = leg.point_at(self.s + LOOKAHEAD)
         dx, dy = tx - x, ty - y
-        alpha = wrap(math.atan2(dy, dx) - yaw)
+        alpha = wrap(math.atan2(dy, dx) - self._facing(yaw))
         if abs(alpha) > REALIGN:  # far off the path's heading: stop and turn again
             self.phase = "brake"
             self._after_brake = "align"
@@ -138,8 +149,14 @@ class PathFollower:
             self._after_brake = "leg_end"
             return 0.0, 0.0, False
         curvature = 2.0 * math.sin(alpha) / max(math.hypot(dx, dy), 1e-3)
-        w = curvature * max(v, self.limits.dead_band)
+        w = curvature * max(v, self.limits.dead_band)  # the heading of travel turns by curvature x speed
+        if self.reverse:
+            return -max(REVERSE_SPEED, self.limits.dead_band), w, False
         return self.max_speed, w, False
+
+    def _facing(self, yaw: float) -> float:
+        """The direction of travel: the heading, or behind it while walking backwards."""
+        return wrap(yaw + math.pi) if self.reverse else yaw
 
     def _final_yaw(self, x: float, y: float, yaw: float, w: float) -> tuple[float, float, bool]:
         if self.final_yaw is None:
@@ -213,7 +230,7 @@ class PathFollower:
             tx, ty = leg.point_at(self.s + LOOKAHEAD)
             heading = math.atan2(ty - y, tx - x)
         else:
-            heading = yaw
+            heading = self._facing(yaw)  # backwards while walking backwards
         if abs(wrap(math.atan2(dy, dx) - heading)) <= CONE:
             return True
         # A person standing on the path ahead, even outside the cone.
