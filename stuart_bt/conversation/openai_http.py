@@ -21,6 +21,7 @@ from typing import Any
 
 from ..mission.commands import Reply
 from .prompt import HISTORY_LIMIT, History, build_messages
+from .streaming import collect_timed
 from .tags import postprocess
 
 UNAVAILABLE = "Sorry, I can't think of an answer right now."
@@ -110,14 +111,8 @@ class OpenAIConversation:
             total = time.perf_counter() - start
             self.last_timing = {"first_token_s": total, "total_s": total}
             return text
-        first, parts = None, []
-        for piece in self.stream(messages):
-            if first is None:
-                first = time.perf_counter() - start
-            parts.append(piece)
-        total = time.perf_counter() - start
-        self.last_timing = {"first_token_s": total if first is None else first, "total_s": total}
-        return "".join(parts).strip()
+        text, self.last_timing = collect_timed(self.stream(messages))
+        return text
 
     # -- Conversation ---------------------------------------------------------------------------------
     def reply(self, text: str, context: dict[str, Any]) -> Reply:

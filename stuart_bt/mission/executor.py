@@ -43,11 +43,9 @@ from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentE
 from ..htn.domain import Domain, TaskCall
 from ..htn.state import lab_world
 from ..language import Parser, Resolver, TaskIntent
-from ..leaves import RunContext, make_leaf
 from ..runner import RunOptions, Session
-from ..tree.builder import build
 from ..tree.spec import Location, NodeSpec, TreeSpec
-from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, CannedConversation, Command, Conversation, interpret
+from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, Conversation, interpret
 from .compiler import CompiledMission, compile_plan
 
 OBJECT_FAULTS = ("not_found", "unreachable")  # failures that mean: the object is not where memory says
@@ -439,13 +437,8 @@ class MissionExecutor:
     def _run_tree(self, spec: TreeSpec, mission: Mission | None) -> tuple[RunOutcome, set[str], str | None]:
         """Build and tick one tree on the session's daemons; the paths that succeeded and the
         leaf whose failure failed the tree."""
-        session = self.session
-        ctx = RunContext(session.clock, self.events, session.blackboard, session.supervisor, Path.cwd())
-        root = build(spec, lambda node: make_leaf(node, ctx), session.clock, session.blackboard)
-        executor = Executor(root, session.clock, self.events, rate=self.options.rate)
-        if session.supervisor is not None:
-            executor.pre_tick.append(session.supervisor.poll)
-            executor.on_halt.append(self._stop_daemons)
+        executor = self.session.executor_for(spec)
+        root = executor.root
         succeeded: set[str] = set()
 
         def track(event: Any) -> None:
@@ -468,14 +461,6 @@ class MissionExecutor:
         failed = _failed_leaf(root) if outcome.status == "FAILURE" else None
         return outcome, succeeded, failed
 
-    def _stop_daemons(self) -> None:
-        """Halt path: every daemon receives stop; wait briefly so the acknowledgements are logged."""
-        supervisor = self.session.supervisor
-        assert supervisor is not None
-        for request in supervisor.stop_all():
-            supervisor.wait(request, timeout=1.0)
-
-    # -- explanations -------------------------------------------------------------------------------
     def _leaf_reason(self, path: str | None) -> str | None:
         outcomes = self.session.blackboard.get("outcomes", None) or {}
         entry = outcomes.get(path) if path else None
