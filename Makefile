@@ -19,11 +19,11 @@ $(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik,llm]"
+	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision]"
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik,llm,ros]"
+	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision]"
 	touch $@
 
 system-deps:

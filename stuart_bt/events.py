@@ -2,12 +2,13 @@
 
 Status changes, commands sent to daemons, daemon events, log lines, utterances and replies are
 all :class:`Event` objects on one :class:`EventStream`. The run report, the JSON-lines log, the
-terminal view (and later the web view and the ROS bridge) subscribe to it; none of them reach
+terminal view the web view and the ROS bridge subscribe to it; none of them reach
 into the executor. Publishing is synchronous and cheap: subscribers must not block.
 
 Event kinds used by the framework (``data`` keys in brackets):
 
 - ``run``: start / end of a run [phase, tree, status, backend]
+- ``tree``: an executor was built for a tree [file, description, root (nested nodes)]
 - ``status``: a node's status changed [old, new]  (``path`` is the node path)
 - ``command``: a request sent to a daemon [family, id, cmd, args]
 - ``daemon``: a line from a daemon [family, type, id, ...] (accepted, progress, done, error)

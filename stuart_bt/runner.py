@@ -27,6 +27,7 @@ from .events import Event, EventStream, JsonlWriter
 from .executor import Executor, RunOutcome
 from .leaves import RunContext, make_leaf
 from .report import ReportBuilder, write_report
+from .snapshot import tree_event_data
 from .tree.builder import build
 from .tree.spec import TreeSpec
 from .world import Pose, load_markers
@@ -121,6 +122,7 @@ class Session:
         ctx = RunContext(self.clock, self.events, self.blackboard, self.supervisor, Path(spec.file).parent)
         root = build(spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
         executor = Executor(root, self.clock, self.events, rate=self.options.rate)
+        self.events.publish("tree", **tree_event_data(spec))  # views and the bridge learn the structure
         if self.supervisor is not None:
             executor.pre_tick.append(self.supervisor.poll)
             executor.on_halt.append(self.stop_daemons)
