@@ -44,6 +44,7 @@ class Served:
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "stuart_bt.cli", "serve", *args, "--host", host, "--port", str(self.port)],
             cwd=cwd, stdout=self.log, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+        self.output_text = ""
         self.url = self._wait_for_url()
 
     def _wait_for_url(self) -> str:
@@ -64,17 +65,19 @@ class Served:
 
     def close(self) -> int | None:
         """Ctrl-C, as a user stops it; the exit status (None if it had to be killed)."""
-        if self.proc.poll() is None:
+        code: int | None = self.proc.poll()
+        if code is None:
             self.proc.send_signal(signal.SIGINT)
             try:
-                self.proc.wait(timeout=30)
+                code = self.proc.wait(timeout=30)
             except subprocess.TimeoutExpired:
                 os.killpg(self.proc.pid, signal.SIGKILL)
                 self.proc.wait()
-                return None
-        self.log.close()
-        Path(self.log.name).unlink(missing_ok=True)
-        return self.proc.returncode
+        if not self.log.closed:
+            self.output_text = self.output()
+            self.log.close()
+            Path(self.log.name).unlink(missing_ok=True)
+        return code
 
     def __enter__(self) -> "Served":
         return self

@@ -87,7 +87,10 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
             print(f"token: {guard.token}  (needed on every request: this address is not loopback-only)", flush=True)
         server = uvicorn.Server(uvicorn.Config(create_app(parts), log_level="warning", lifespan="on",
                                                ws="websockets-sansio", timeout_graceful_shutdown=2))
-        server.run(sockets=[listener])
+        try:
+            server.run(sockets=[listener])
+        except KeyboardInterrupt:  # uvicorn re-raises the Ctrl-C it handled: for a server, a normal end
+            pass
     finally:
         if control is not None:
             control.close()
