@@ -16,7 +16,7 @@ import yaml
 
 from .markers import MapBounds
 
-OCCUPIED_BELOW = 255 * (1 - 0.65)  # grey levels darker than this are obstacles (occupied_thresh 0.65)
+FREE_ABOVE = 255 * (1 - 0.196)  # grey levels lighter than this are free space (free_thresh 0.196)
 
 
 def default_map() -> Path:
@@ -56,13 +56,14 @@ class MapFile:
         return {"resolution": self.resolution, "origin": list(self.origin), "width": self.width, "height": self.height}
 
     def occupied(self, x: float, y: float) -> bool:
+        """True where the robot cannot stand: an obstacle, unknown space, or off the picture."""
         if self.pixels is None:
             return False
         col = int((x - self.origin[0]) / self.resolution)
         row = self.height - 1 - int((y - self.origin[1]) / self.resolution)
         if not (0 <= col < self.width and 0 <= row < self.height):
             return True
-        return self.pixels[col, row] < OCCUPIED_BELOW
+        return self.pixels[col, row] <= FREE_ABOVE
 
     def bounds(self) -> MapBounds:
         ox, oy = self.origin

@@ -134,7 +134,8 @@ class MarkerStore:
                 raise MarkerEditError(f"({x:.2f}, {y:.2f}) is outside the map "
                                       f"(x {b.x_min:.2f}..{b.x_max:.2f}, y {b.y_min:.2f}..{b.y_max:.2f} m)")
             if b.occupied is not None and b.occupied(x, y):
-                raise MarkerEditError(f"({x:.2f}, {y:.2f}) is on an obstacle; the robot cannot stand there")
+                raise MarkerEditError(f"({x:.2f}, {y:.2f}) is not free space on the map (an obstacle, or beyond "
+                                      "the walls): the robot cannot stand there")
         return {"x": round(x, 4), "y": round(y, 4), "yaw": round(yaw, 4), "display_name": display.strip()}
 
     def _write(self, body: dict[str, Any]) -> None:

@@ -14,6 +14,7 @@ const console_ = new ConsoleView(store);
 const map = new MapView(store);
 const gestures = new GestureView();
 const views = { tree, console: console_, map, gestures };
+window.stuart = { store, ...views }; // for a look from the browser's console (and the browser tests)
 
 store.on("reset", () => { tree.reset(); console_.reset(); map.reset(); });
 store.on("events", (batch) => {

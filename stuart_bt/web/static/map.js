@@ -276,7 +276,7 @@ export class MapView {
     });
     this.canvas.addEventListener("pointerup", () => this.finish());
     this.canvas.addEventListener("pointercancel", () => { this.gesture = null; this.draw(); });
-    window.addEventListener("resize", () => { this.resize(); this.draw(); });
+    new ResizeObserver(() => { this.resize(); this.draw(); }).observe(this.canvas.parentElement);
   }
 
   async finish() {
