@@ -13,7 +13,7 @@ Routes (every answer is JSON; a refused request gets ``{"error": "one sentence"}
 | ``POST /api/walk`` ``{x, y, yaw}``, ``/api/goto`` ``{marker}`` | walk to a map pose / a marker |
 | ``GET /api/map``, ``/api/map.png`` | map numbers and picture |
 | ``GET /api/markers``, ``POST /api/markers`` ``{op, name, ...}`` | the marker file (markers.py) |
-| ``GET /api/joints``, ``POST /api/pose`` ``{joints}`` | sliders; the pose applied in the sim |
+| ``GET /api/joints``, ``GET /api/pose``, ``POST /api/pose`` ``{joints}`` | sliders; the sim's arm pose now; a pose to take |
 | ``GET /api/gestures``, ``GET/POST /api/gestures/{name}``, ``POST /api/gestures/{name}/play`` | gesture files |
 """
 
@@ -163,6 +163,12 @@ def create_app(parts: WebParts) -> Starlette:
                                  points=[{"t": POSE_BLEND, "joints": joints_in}])
         return JSONResponse({"ok": True, "ends_at": result.get("ends_at")})
 
+    async def pose_now(request: Request) -> Response:
+        state_now = await _off_loop(need_control().world_call, "state")
+        names = {row["name"] for row in await _off_loop(joint_table)}
+        return JSONResponse({"joints": {k: v for k, v in state_now.get("joints", {}).items() if k in names},
+                             "t": state_now.get("t")})
+
     def folder() -> GestureFolder:
         if parts.gestures is None:
             raise ControlError("no gesture folder")
@@ -218,6 +224,7 @@ def create_app(parts: WebParts) -> Starlette:
         Route("/api/markers", markers_get, methods=["GET"]),
         Route("/api/markers", markers_edit, methods=["POST"]),
         Route("/api/joints", joints),
+        Route("/api/pose", pose_now, methods=["GET"]),
         Route("/api/pose", pose, methods=["POST"]),
         Route("/api/gestures", gestures_list),
         Route("/api/gestures/{name}", gesture_get, methods=["GET"]),

@@ -10,6 +10,7 @@ on a problem) and read back with ``load_gesture_file``: what the page saves is e
 from __future__ import annotations
 
 import re
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +27,7 @@ class GestureDeskError(ValueError):
         self.problems = problems
 
 
+@cache  # the robot description does not change while serving
 def joint_table() -> list[dict[str, Any]]:
     """Every joint a gesture may move, grouped as the sliders are: name, group, limits, neutral."""
     from ..skills.gesture.keyframes import NEUTRAL

@@ -48,6 +48,10 @@ export class GestureView {
         el("span", {}, pretty(joint.name)), input, shown));
     }
     document.getElementById("sliders").replaceChildren(...groups.values());
+    if (this.live) { // start from where the robot's arms are
+      const now = await getJson("/api/pose").catch(() => null);
+      if (now) for (const [name, value] of Object.entries(now.joints)) this.setValue(name, value);
+    }
     await this.refreshList();
     this.drawFrames();
   }
