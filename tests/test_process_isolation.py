@@ -97,3 +97,37 @@ def test_the_framework_never_imports_a_vendor_sdk(tmp_path):
 def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
     modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
     assert forbidden(modules, ROS) == ["rosidl_probe_absent"]
+
+
+WEB_SERVER = r"""
+import os, signal, socket, threading, time, urllib.request
+from stuart_bt.cli import main
+
+with socket.socket() as s:
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+
+
+def visit_then_stop():
+    for _ in range(600):
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/state", timeout=2).read()
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/markers", timeout=2).read()
+            break
+        except OSError:
+            time.sleep(0.1)
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+threading.Thread(target=visit_then_stop, daemon=True).start()
+main(["serve", TREE, "--paused", "--port", str(port)])
+"""
+
+
+def test_the_web_server_never_imports_a_vendor_sdk_or_ros(tmp_path):
+    pytest.importorskip("starlette", reason="the web view needs the web extra")
+    tree = Path(__file__).resolve().parents[1] / "trees" / "greet.yaml"
+    modules = imports_of(tmp_path, "web", "code", WEB_SERVER.replace("TREE", repr(str(tree))))
+    assert {"stuart_bt.web.app", "stuart_bt.web.control", "uvicorn", "starlette"} <= modules
+    assert forbidden(modules, VENDOR) == []
+    assert forbidden(modules, ROS) == []

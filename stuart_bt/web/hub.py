@@ -1,10 +1,12 @@
 """From the event stream to the browsers: one subscriber, batched pushes, history for late joiners.
 
 The executor publishes on its own thread and must never wait for a browser, so the subscriber
-only turns the event into a dict, appends it to a pending list and, if no flush is scheduled yet,
-asks the server's event loop to flush (one ``call_soon_threadsafe`` per batch, not per event).
-The flush encodes the batch once and hands the same text to every client's bounded queue; a
-client that falls far behind is told to reload instead of growing memory without end.
+only appends the event to a pending list: no encoding, no wake-up of another thread (a wake-up
+per batch made the tick measurably slower; see bench/web.py). The server's event loop flushes
+the list every FLUSH_EVERY seconds: it folds the batch into the snapshot and the history, encodes
+it once and hands the same text to every client's bounded queue; a client that falls far behind
+is told to reload instead of growing memory without end. A status change therefore reaches the
+browsers at most FLUSH_EVERY (plus sending) after it happened.
 
 A browser that connects later gets a ``hello``: the snapshot (stuart_bt.snapshot/1) and the
 recent history of events, from which it folds the same state and draws the scrubbable timeline.
@@ -23,6 +25,7 @@ from ..events import Event, EventStream, _json_default
 from ..snapshot import TreeSnapshot
 
 RESERVED = ("t", "wall", "kind", "path")  # an event's own fields in its JSON form
+FLUSH_EVERY = 0.015  # seconds between two pushes to the browsers
 HISTORY = 50_000  # events a late browser receives (the tour has ~3000 status changes)
 CLIENT_QUEUE = 2_000  # batches a client may fall behind before it is told to resync
 
@@ -58,48 +61,50 @@ class EventHub:
         self.replay = False
         for event in replay:
             self.replay = True
-            self.snapshot.apply(event)
-            self.history.append(wire(event))
+            self._fold(event)
         self.clients: set[Client] = set()
-        self._pending: list[dict[str, Any]] = []
+        self._pending: list[Event] = []
         self._lock = threading.Lock()
-        self._scheduled = False
-        self._loop: asyncio.AbstractEventLoop | None = None
+        self._pump: asyncio.Task[None] | None = None
         self._unsubscribe = events.subscribe(self._on_event) if events is not None else None
 
     def attach(self, loop: asyncio.AbstractEventLoop) -> None:
-        """The server's event loop, where flushes run."""
-        self._loop = loop
+        """Start pushing from the server's event loop (call it on that loop)."""
+        self._pump = loop.create_task(self._push_forever())
+
+    async def _push_forever(self) -> None:
+        while True:
+            self._flush()
+            await asyncio.sleep(FLUSH_EVERY)
 
     def close(self) -> None:
         if self._unsubscribe is not None:
             self._unsubscribe()
             self._unsubscribe = None
+        if self._pump is not None:
+            self._pump.cancel()
+            self._pump = None
         for client in list(self.clients):
             client.offer(json.dumps({"type": "bye"}))
 
-    # -- publishing thread --------------------------------------------------------------------------
+    # -- publishing thread: as little as possible (the executor is waiting) -------------------------
     def _on_event(self, event: Event) -> None:
-        self.snapshot.apply(event)
-        item = wire(event)
+        if event.kind == "blackboard":  # its value may be changed in place later: keep it as it is now
+            event = Event(event.t, event.kind, event.path, _frozen(event.data), event.wall)
         with self._lock:
-            self.history.append(item)
-            if self._loop is None:  # no server yet: a client's hello will carry it
-                return
-            self._pending.append(item)
-            if self._scheduled:
-                return
-            self._scheduled = True
-        try:
-            self._loop.call_soon_threadsafe(self._flush)
-        except RuntimeError:  # the loop has closed: the server is going down
-            pass
+            self._pending.append(event)
 
     # -- event loop ---------------------------------------------------------------------------------
+    def _fold(self, event: Event) -> dict[str, Any]:
+        self.snapshot.apply(event)
+        item = wire(event)
+        self.history.append(item)
+        return item
+
     def _flush(self) -> None:
         with self._lock:
-            batch, self._pending = self._pending, []
-            self._scheduled = False
+            events, self._pending = self._pending, []
+        batch = [self._fold(e) for e in events]
         if not batch or not self.clients:
             return
         text = json.dumps({"type": "events", "events": batch}, default=_json_default, separators=(",", ":"))
@@ -109,16 +114,13 @@ class EventHub:
     def connect(self) -> tuple[Client, str]:
         """Register a new client and its first message: who we are, the snapshot and the history.
 
-        Runs on the event loop, like the flush: events still pending are left out of the history
-        because the next flush brings them to this client too (no gap, no duplicate)."""
+        Runs on the event loop, like the flush, after flushing what is pending: the history then
+        ends exactly where the next batch will begin (no gap, no duplicate)."""
+        self._flush()
         client = Client()
-        with self._lock:
-            history = list(self.history)
-            if self._pending:
-                history = history[:len(history) - len(self._pending)]
-            self.clients.add(client)
+        self.clients.add(client)
         hello = json.dumps({"type": "hello", "info": self.info, "replay": self.replay,
-                            "snapshot": self.snapshot.to_dict(), "events": history},
+                            "snapshot": self.snapshot.to_dict(), "events": list(self.history)},
                            default=_json_default, separators=(",", ":"))
         return client, hello
 
@@ -142,3 +144,8 @@ def wire(event: Event) -> dict[str, Any]:
         else:
             item.pop("path", None)
     return item
+
+
+def _frozen(data: dict[str, Any]) -> dict[str, Any]:
+    """A deep copy as plain JSON data (what the page would receive anyway)."""
+    return json.loads(json.dumps(data, default=_json_default))
