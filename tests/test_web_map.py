@@ -68,7 +68,6 @@ def test_a_marker_added_on_the_map_survives_a_reload_and_can_be_walked_to(page, 
 
         page.reload()
         page.wait_for_selector('#marker-table tr[data-marker="coffee_corner"]')
-        screenshot(page, "map")
 
         page.check('input[name=map-mode][value=move]')
         drag(page, screen(page, 2.0, 1.0), screen(page, 2.5, 1.0))
@@ -92,6 +91,7 @@ def test_a_marker_added_on_the_map_survives_a_reload_and_can_be_walked_to(page, 
                                timeout=WAIT)
         shown = page.evaluate("`x ${stuart.map.pose.x.toFixed(2)} m, y ${stuart.map.pose.y.toFixed(2)} m`")
         assert page.text_content("#robot-pose").startswith(shown)
+        screenshot(page, "map")
 
         page.locator('#marker-table tr[data-marker="coffee"]').locator("text=✕").click()
         page.wait_for_function("!document.querySelector('#marker-table tr[data-marker=\"coffee\"]')")

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import threading
 from collections import deque
 from typing import Any, Iterable
 
@@ -63,8 +62,7 @@ class EventHub:
             self.replay = True
             self._fold(event)
         self.clients: set[Client] = set()
-        self._pending: list[Event] = []
-        self._lock = threading.Lock()
+        self._pending: deque[Event] = deque()
         self._pump: asyncio.Task[None] | None = None
         self._unsubscribe = events.subscribe(self._on_event) if events is not None else None
 
@@ -91,8 +89,7 @@ class EventHub:
     def _on_event(self, event: Event) -> None:
         if event.kind == "blackboard":  # its value may be changed in place later: keep it as it is now
             event = Event(event.t, event.kind, event.path, _frozen(event.data), event.wall)
-        with self._lock:
-            self._pending.append(event)
+        self._pending.append(event)  # deque.append is atomic: no lock on the executor's thread
 
     # -- event loop ---------------------------------------------------------------------------------
     def _fold(self, event: Event) -> dict[str, Any]:
@@ -102,8 +99,8 @@ class EventHub:
         return item
 
     def _flush(self) -> None:
-        with self._lock:
-            events, self._pending = self._pending, []
+        pending = self._pending
+        events = [pending.popleft() for _ in range(len(pending))]  # what arrives meanwhile waits
         batch = [self._fold(e) for e in events]
         if not batch or not self.clients:
             return
