@@ -33,7 +33,8 @@ def add_serve_command(subparsers: Any) -> argparse.ArgumentParser:
                         "(default 1: real time, to watch; 0: as fast as possible)")
     p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
     p.add_argument("--markers", metavar="FILE", help="marker file the map edits (default: the tree's)")
-    p.add_argument("--gestures", metavar="DIR", default="gestures", help="folder of recorded gestures (default ./gestures)")
+    p.add_argument("--gestures", metavar="DIR", default="gestures",
+                   help="folder of recorded gestures (default ./gestures)")
     p.add_argument("--start", metavar="MARKER", help="marker the robot starts at (default entrance)")
     p.add_argument("--log", metavar="OUT.jsonl", help="write every event as JSON lines (replay it with --replay)")
     p.add_argument("--paused", action="store_true", help="wait for the Run button instead of starting the tree")
