@@ -83,8 +83,9 @@ def test_a_marker_added_on_the_map_survives_a_reload_and_can_be_walked_to(page, 
         page.mouse.click(*screen(page, 1.0, -1.0))
         page.wait_for_function("stuart.map.pose && Math.hypot(stuart.map.pose.x - 1.0, stuart.map.pose.y + 1.0) < 0.2",
                                timeout=WAIT)
-        shown = page.evaluate("`x ${stuart.map.pose.x.toFixed(2)} m, y ${stuart.map.pose.y.toFixed(2)} m`")
-        assert page.text_content("#robot-pose").startswith(shown)
+        page.wait_for_function("document.body.dataset.busy === 'no'", timeout=WAIT)
+        assert page.evaluate("document.getElementById('robot-pose').textContent.startsWith("
+                             "`x ${stuart.map.pose.x.toFixed(2)} m, y ${stuart.map.pose.y.toFixed(2)} m`)")
         screenshot(page, "map")
 
         page.locator('#marker-table tr[data-marker="coffee"]').locator("text=✕").click()
