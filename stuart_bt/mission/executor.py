@@ -130,6 +130,7 @@ class MissionExecutor:
         self._worker: threading.Thread | None = None
         self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
         self._pending_replies = 0
+        self._asides: deque[str] = deque()  # replies to say while a mission runs, between its own speech
 
     # -- life cycle ---------------------------------------------------------------------------------
     def start(self) -> Self:
@@ -218,6 +219,7 @@ class MissionExecutor:
         with self._cond:
             dropped = [j for j in self._queue if isinstance(j, Mission)]
             self._queue.clear()
+            self._asides.clear()
             for m in dropped:
                 m.status, m.reason = "stopped", "stop requested"
                 self.events.publish("mission", id=m.id, phase="stopped", reason="queue cleared")
@@ -252,7 +254,10 @@ class MissionExecutor:
                 reply = self.conversation.reply(text, context)
                 self.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
                 with self._cond:
-                    self._queue.appendleft(_Say(reply.text, "reply"))
+                    if isinstance(self._current, Mission) and self._executor is not None:
+                        self._asides.append(reply.text)  # said at the mission's next pause in speech
+                    else:
+                        self._queue.appendleft(_Say(reply.text, "reply"))
             finally:
                 with self._cond:
                     self._pending_replies -= 1
@@ -316,6 +321,8 @@ class MissionExecutor:
                 with self._cond:
                     self._current = None
                     self._executor = None
+                    while self._asides:  # the mission ended before a reply found a pause: say it now
+                        self._queue.appendleft(_Say(self._asides.pop(), "reply"))
                     self._cond.notify_all()
 
     def _say(self, text: str) -> RunOutcome:
@@ -446,6 +453,8 @@ class MissionExecutor:
                 succeeded.add(event.path)
 
         unsubscribe = self.events.subscribe(track)
+        if mission is not None:
+            executor.pre_tick.append(self._say_aside)
         with self._cond:
             self._executor = executor
             if mission is not None and mission.cancelled is not None:
@@ -460,6 +469,20 @@ class MissionExecutor:
                 self._executor = None
         failed = _failed_leaf(root) if outcome.status == "FAILURE" else None
         return outcome, succeeded, failed
+
+    def _say_aside(self) -> None:
+        """Before a mission tick: a reply that is waiting goes to the speech daemon when the mission
+        is not speaking, so a question asked during a walk is answered during the walk. The
+        mission's own next speech takes the voice back (the daemon preempts the older one)."""
+        if not self._asides or self.session.supervisor is None or "tts" not in self.session.supervisor.families:
+            return
+        tts = self.session.supervisor.client("tts")
+        if any(r.cmd == "say" for r in tts.in_flight):
+            return
+        with self._cond:
+            text = self._asides.popleft() if self._asides else None
+        if text is not None:
+            tts.request("say", {"text": text}, path="reply")
 
     def _leaf_reason(self, path: str | None) -> str | None:
         outcomes = self.session.blackboard.get("outcomes", None) or {}
