@@ -204,6 +204,11 @@ def test_recogniser_noise() -> None:
     assert shape("go. to. the kitchen.") == [("navigate_to_marker", "kitchen")]
 
 
+def test_a_hum_after_a_number_is_millimetres() -> None:
+    assert one("go forward 500 mm").x == pytest.approx(0.5)
+    assert one("go forward mm two metres").x == pytest.approx(2.0)  # a hum elsewhere is dropped
+
+
 @pytest.mark.parametrize("text", ["", " ", "???", "\x00\x01", "and and and", "then", "🙂" * 50, "the " * 5000,
                                   "go to " * 3000, "1" * 10_000, "'''", "1.2.3.4", "-", "stop" + "!" * 1000])
 def test_anything_parses_without_error(text: str) -> None:

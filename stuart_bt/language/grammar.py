@@ -37,7 +37,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 from .intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
-from .numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity
+from .numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity, word_value
 
 Spec = tuple[str, str, float, float, float]  # (action, target, x, y, yaw): an intent without raw_text
 Result = tuple[list[Spec], int] | None
@@ -394,9 +394,9 @@ _NUMBER_PIECE = re.compile(r"\d+(?:[.,]\d+)?[^\W_]*|[^\W\d_][^\W_]*(?:'[^\W_]+)*
 def tokenize(text: str) -> Tokens:
     """Lower-case tokens of ``text``. Punctuation that separates clauses (``. , ; ! ? &``) is a
     token, other symbols are spaces; apostrophes are dropped ("let's" -> "lets": recognisers write
-    both); number-unit runs are split ("1.5m"); hesitations ("um", "uh") and immediate repeats
-    ("the the") are removed; ing-forms of known verbs become the verb ("turning" -> "turn"). At
-    most MAX_TOKENS tokens are read."""
+    both); number-unit runs are split ("1.5m"); hesitations ("um", "uh"; "mm" unless a number is
+    before it: "500 mm") and immediate repeats ("the the") are removed; ing-forms of known verbs
+    become the verb ("turning" -> "turn"). At most MAX_TOKENS tokens are read."""
     low = text.lower()
     if len(low) != len(text):  # a few characters change length in lower(): keep offsets right
         low = "".join(c.lower() if len(c.lower()) == 1 else c for c in text)
@@ -414,7 +414,9 @@ def tokenize(text: str) -> Tokens:
                 t = t.replace("'", "")
                 if not t:
                     continue
-            if t in DISFLUENCIES or (t == last and t not in HARD_STOPS and t != ","):
+            if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
+                continue  # "um"; but "500 mm" is a unit, not a hum
+            if t == last and t not in HARD_STOPS and t != ",":
                 continue
             c = t[0]
             if "0" <= c <= "9":
