@@ -152,6 +152,32 @@ def test_sources_destinations_and_purposes() -> None:
     assert shape("go to the kitchen to get a drink") == [("navigate_to_marker", "kitchen"), ("pick_up", "drink")]
 
 
+def test_a_find_verb_said_as_a_noun_is_a_find() -> None:
+    assert shape("have a look for my phone") == [("find", "phone")]
+    assert shape("take a quick look around for the cup") == [("find", "cup")]
+    assert shape("have a peek for the apple") == [("find", "apple")]
+    assert shape("have a seat") == [] and shape("take a look at this") == []  # nothing to find
+
+
+def test_check_for_is_a_search() -> None:
+    assert shape("check for the cup") == [("find", "cup")]
+    assert shape("check the kitchen for the bottle") == [("navigate_to_marker", "kitchen"), ("find", "bottle")]
+    assert shape("check the kitchen") == [] and shape("check the time") == []  # check what?
+
+
+def test_being_somewhere_after_when_or_once_is_getting_there() -> None:
+    assert shape("once you're at the workbench pick up the screwdriver") == [
+        ("navigate_to_marker", "workbench"), ("pick_up", "screwdriver")]
+    assert shape("when you are in the kitchen, look for the apple") == [
+        ("navigate_to_marker", "kitchen"), ("find", "apple")]
+    # said again after the navigation it repeats, it adds nothing
+    assert shape("go to the kitchen and once you are in the kitchen pick up the cup") == [
+        ("navigate_to_marker", "kitchen"), ("pick_up", "cup")]
+    assert shape("when you are at the table pick up the cup") == [("pick_up", "cup")]  # furniture: no place
+    assert shape("when you're ready go to the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("if you're in the kitchen pick up the cup") == []  # a condition the grammar cannot check
+
+
 def test_but_first_puts_the_second_clause_first() -> None:
     assert shape("go to the kitchen but first turn around") == [("turn_around", ""), ("navigate_to_marker", "kitchen")]
 
@@ -189,6 +215,18 @@ def test_polite_forms_are_commands(text: str) -> None:
 ])
 def test_conversation_is_no_command(text: str) -> None:
     assert parse_command(text) == []
+
+
+@pytest.mark.parametrize("text,name", [
+    ("let me shake your hand", "shake hand"), ("can I shake your hand", "shake hand"), ("may I hug you", "hug"),
+    ("let me give you a hug", "hug"), ("could we give you a high five", "high five"),
+])
+def test_the_speaker_asking_to_share_a_gesture_is_a_gesture(text: str, name: str) -> None:
+    assert shape(text) == [("gesture", name)]
+
+
+def test_the_speaker_doing_something_alone_is_no_command() -> None:
+    assert shape("let me go to the kitchen") == [] and shape("can I clap") == [] and shape("let me wave") == []
 
 
 def test_a_question_ends_at_its_sentence() -> None:

@@ -284,7 +284,11 @@ TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "f
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
                         "carry", "get", "hand", "pass", "give", "snatch", "obtain", "gather", "seize", "acquire",
                         "deliver", "pluck", "procure", "nab", "raise"})
-FIND_VERBS = frozenset({"find", "locate", "spot", "seek", "detect", "search", "look", "hunt", "scan", "track"})
+FIND_VERBS = frozenset({"find", "locate", "spot", "seek", "detect", "search", "look", "hunt", "scan", "track",
+                        "check"})
+# a find verb said as a noun after a light verb: "have a look for", "take a quick look around for"
+FIND_NOUNS = frozenset({"look", "search", "hunt", "scan", "check", "peek", "peep", "glance"})
+FIND_NOUN_LEADS = frozenset({"have", "take", "do", "give", "make"})
 STOP_VERBS = frozenset({"stop", "halt", "freeze", "pause", "cancel", "abort", "wait", "stay", "quit", "cease",
                         "stand", "hold", "whoa", "woah", "enough", "never", "forget", "cut", "terminate", "end",
                         "interrupt", "chill", "hang", "desist", "emergency", "e", "brake", "kill", "break", "wo"})
@@ -303,7 +307,7 @@ STRONG_VERBS = frozenset({"go", "turn", "move", "walk", "head", "pick", "grab", 
 # a verb followed by one of its particles starts a new command inside a noun phrase ("... the
 # kitchen look for the apple"); as a pair these are not read as nouns ("look" alone may be)
 VERB_PARTICLES = frozenset({
-    ("look", "for"), ("search", "for"), ("hunt", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
+    ("look", "for"), ("search", "for"), ("hunt", "for"), ("check", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
     ("step", "forward"), ("hold", "on"), ("hang", "on"), ("wait", "there"), ("wait", "for"), ("stay", "there"),
     ("take", "a"), ("turn", "around"), ("spin", "around"), ("face", "the"), ("shake", "hands"),
     ("give", "me"), ("hand", "me"), ("bring", "me"), ("get", "me"), ("fetch", "me"), ("grab", "me"),
@@ -624,7 +628,7 @@ _NUMBER_STARTS = frozenset({
     "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
     "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
     "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
-    "couple", "few", "zero", "full", "complete", "whole", "pair", "pi",
+    "couple", "few", "zero", "full", "complete", "whole", "pair", "pi", "point",
 })
 
 
@@ -887,29 +891,30 @@ def _pick(s: _State, i: int) -> Result:
     return out, e
 
 
-def _find(s: _State, i: int) -> Result:
-    """find / locate / look for / search for ...: find; "search the kitchen for the cup" goes
-    to the kitchen first. ``None`` for "look left", "find out ..."."""
+def _find(s: _State, i: int, verb: str = "") -> Result:
+    """find / locate / look for / search for / check for ...: find; "search the kitchen for the
+    cup" goes to the kitchen first. ``None`` for "look left", "find out ...". ``verb`` overrides
+    the word at ``i`` (a noun read as a verb: "have a peek for ...")."""
     toks, n = s.toks, s.n
-    verb = toks[i]
+    verb = verb or toks[i]
     j = i + 1
     area: str | None = None
-    if verb in ("look", "hunt", "scan", "search", "seek", "track"):
+    if verb in ("look", "hunt", "scan", "search", "seek", "track", "check"):
         while s.at(j) in ("around", "about", "out", "everywhere", "all", "over", "round"):
             j += 1
         if s.at(j) == "for":
             j += 1
-        elif verb in ("search", "scan"):
+        elif verb in ("search", "scan", "check"):
             words, e = _np(s, j)
             area = _place(s, words)
             if area is None:
                 return None
-            if s.at(e) != "for":
-                return [(FIND, area, 0.0, 0.0, 0.0)], e
+            if s.at(e) != "for":  # "search the kitchen": a place to search; "check the kitchen": vague
+                return ([(FIND, area, 0.0, 0.0, 0.0)], e) if verb != "check" else None
             j = e + 1
         elif verb == "track" and s.at(j) == "down":
             j += 1
-        elif verb in ("look", "hunt", "seek"):
+        elif verb in ("look", "hunt", "seek", "check"):
             return None
     elif verb == "find":
         if s.at(j) == "out":
@@ -937,6 +942,26 @@ def _find(s: _State, i: int) -> Result:
         out.append((NAVIGATE, area, 0.0, 0.0, 0.0))
     out.append((FIND, target, 0.0, 0.0, 0.0))
     return out, e
+
+
+def _find_noun(s: _State, i: int) -> Result:
+    """A light verb with the noun of a find verb: "have a look for the keys", "take a quick look
+    around for the cup", "do a search for the bottle": read as that find verb. ``None`` when no
+    such noun follows ("take a look at this" has no "for": no object to find)."""
+    k = i + 1
+    if s.at(k) not in ("a", "an", "another"):
+        return None
+    k += 1
+    if s.at(k) in ("quick", "little", "good", "proper", "careful", "fast", "short"):
+        k += 1
+    if s.at(k) not in FIND_NOUNS:
+        return None
+    m = k + 1
+    while s.at(m) in ("around", "about", "round"):
+        m += 1
+    if s.at(m) != "for" and s.toks[k] not in ("search", "scan", "check"):
+        return None
+    return _find(s, k, s.toks[k] if s.toks[k] in FIND_VERBS else "look")
 
 
 def _way_to(s: _State, m: int) -> Result:
@@ -1106,6 +1131,8 @@ def _do(s: _State, i: int) -> Result:
     toks, n = s.toks, s.n
     verb = toks[i]
     j = i + 1
+    if verb in FIND_NOUN_LEADS and (got := _find_noun(s, i)) is not None:
+        return got
     if verb == "take" and s.at(j) in ("me", "us", "him", "her", "them") and s.at(j + 1) in TO_WORDS:
         words, e = _np(s, j + 2)
         target = _place(s, words)
@@ -1124,7 +1151,7 @@ def _do(s: _State, i: int) -> Result:
                 target = _place(s, words)
                 return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e + 1) if target else None
             return None
-    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "the", "our"):
+    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "the", "our", "you"):
         if s.at(j) in ("the", "our") and s.at(j + 1) in ("guests", "visitors", "kids", "children", "audience",
                                                          "crowd", "people", "group", "class", "team"):
             j += 2
@@ -1209,6 +1236,7 @@ _DISPATCH["raise"] = _gesture
 _DISPATCH["lift"] = _pick
 for _v in GUIDE_VERBS:
     _DISPATCH[_v] = _guide
+_DISPATCH["have"] = _find_noun  # "have a look for ..." (and nothing else: "have a seat")
 
 
 STOP_PHRASES: tuple[tuple[str, ...], ...] = (
@@ -1294,6 +1322,33 @@ def _request(s: _State, i: int) -> Result:
     return ([(PICK, target, 0.0, 0.0, 0.0)], e) if target else None
 
 
+# the speaker as the subject of a gesture the robot shares: "let me shake your hand", "can I hug
+# you", "may we give you a high five" ask the robot for that gesture; other "can I ..." are
+# questions about the speaker ("can I go to the kitchen?")
+SPEAKER_OPENERS: tuple[tuple[str, ...], ...] = (
+    ("let", "me"), ("can", "i"), ("could", "i"), ("may", "i"), ("can", "we"), ("could", "we"), ("may", "we"))
+_SPEAKER_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
+for _o in SPEAKER_OPENERS:
+    _SPEAKER_BY_FIRST[_o[0]] = _SPEAKER_BY_FIRST.get(_o[0], ()) + (_o,)
+RECIPROCAL = frozenset({"hug", "shake hand", "high five"})  # gestures made with someone
+
+
+def _reciprocal(s: _State, i: int) -> Result:
+    """ "let me shake your hand" / "can I give you a hug": the robot's half of a shared gesture."""
+    p = s.phrase_at(i, _SPEAKER_BY_FIRST)
+    if p is None:
+        return None
+    j = i + len(p)
+    while s.at(j) in ("please", "just"):
+        j += 1
+    if j >= s.n or (s.toks[j] not in GESTURE_VERBS and s.toks[j] not in LIGHT_VERBS and s.toks[j] != "high"):
+        return None
+    got = _clause(s, j)
+    if got is None or any(a != GESTURE or tg not in RECIPROCAL for a, tg, *_ in got[0]):
+        return None
+    return got
+
+
 def _opens_conversation(s: _State, i: int) -> bool:
     """Whether the clause at ``i`` opens like a question or statement (so the sentence is
     conversation to its end): wh-words, auxiliaries, subjects, wishes ("would you like")."""
@@ -1316,6 +1371,8 @@ def _clause(s: _State, i: int) -> Result:
     phrase continuing the clause before)."""
     toks, n = s.toks, s.n
     if toks[i] in _REQUEST_BY_FIRST and (got := _request(s, i)) is not None:
+        return got
+    if toks[i] in _SPEAKER_BY_FIRST and (got := _reciprocal(s, i)) is not None:
         return got
     if toks[i] in _WISH_BY_FIRST and s.phrase_at(i, _WISH_BY_FIRST) is not None:
         return None
@@ -1511,8 +1568,14 @@ class Grammar:
                 if perfect and toks[i] in PAST:
                     toks[i] = PAST[toks[i]]  # "when you've found it": the verb ("when you went": a story)
             start = i
-            got = _clause(s, i)
+            got = _arrival(s, i) if subordinate and t != "if" else None
             if got is None:
+                got = _clause(s, i)
+            if got is None:
+                if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
+                    i = _skip_rest(s, i + 1)
+                    s.first = False
+                    continue
                 if _opens_conversation(s, i) and not _topic(s, i):
                     dead = True
                 i += 1
@@ -1544,6 +1607,20 @@ class Grammar:
             s.first = False
             i = _skip_rest(s, j)
         return _dedupe_stops(out)
+
+
+def _arrival(s: _State, i: int) -> Result:
+    """After "when you" / "once you": being somewhere is getting there ("once you're at the
+    workbench, pick up the screwdriver", "when you are in the kitchen ..."): navigate_to_marker,
+    dropped like any subordinate clause when it repeats the navigation before it. (After "if"
+    it is a condition, not a plan.)"""
+    if s.at(i) in ("are", "re"):
+        i += 1
+    if s.at(i) not in ("at", "in", "inside", "by", "near"):
+        return None
+    words, e = _np(s, i + 1)
+    place = _place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], e) if place and words[-1] not in SURFACES else None
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:
