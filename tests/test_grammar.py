@@ -29,6 +29,7 @@ def shape(text: str) -> list[tuple[str, str]]:
 @pytest.mark.parametrize("text,x,y", [
     ("move forward two metres", 2, 0), ("go back two metres", -2, 0), ("move left 1 metre", 0, 1),
     ("move right 1 metre", 0, -1), ("step back 50 cm", -0.5, 0), ("move 2 m to the left", 0, 2),
+    ("go forward point five metres", 0.5, 0), ("go forward nought point five metres", 0.5, 0),
 ])
 def test_moves_are_x_forward_y_left(text: str, x: float, y: float) -> None:
     i = one(text)
@@ -156,6 +157,7 @@ def test_a_find_verb_said_as_a_noun_is_a_find() -> None:
     assert shape("have a look for my phone") == [("find", "phone")]
     assert shape("take a quick look around for the cup") == [("find", "cup")]
     assert shape("have a peek for the apple") == [("find", "apple")]
+    assert shape("take a look around the kitchen for the cup") == [("navigate_to_marker", "kitchen"), ("find", "cup")]
     assert shape("have a seat") == [] and shape("take a look at this") == []  # nothing to find
 
 
@@ -173,9 +175,20 @@ def test_being_somewhere_after_when_or_once_is_getting_there() -> None:
     # said again after the navigation it repeats, it adds nothing
     assert shape("go to the kitchen and once you are in the kitchen pick up the cup") == [
         ("navigate_to_marker", "kitchen"), ("pick_up", "cup")]
+    assert shape("as soon as you arrive in the bathroom turn around") == [
+        ("navigate_to_marker", "bathroom"), ("turn_around", "")]
     assert shape("when you are at the table pick up the cup") == [("pick_up", "cup")]  # furniture: no place
     assert shape("when you're ready go to the kitchen") == [("navigate_to_marker", "kitchen")]
     assert shape("if you're in the kitchen pick up the cup") == []  # a condition the grammar cannot check
+
+
+def test_a_subordinate_clause_is_never_an_ellipsis() -> None:
+    # "you" is its subject: "ready" is not a second place, "finished" not a second object
+    assert shape("go to the kitchen and when you're ready, wave") == [("navigate_to_marker", "kitchen"),
+                                                                      ("gesture", "wave")]
+    assert shape("pick up the cup and once you're finished, wave") == [("pick_up", "cup"), ("gesture", "wave")]
+    assert shape("go to the kitchen and once you arrive, wave") == [("navigate_to_marker", "kitchen"),
+                                                                    ("gesture", "wave")]
 
 
 def test_but_first_puts_the_second_clause_first() -> None:

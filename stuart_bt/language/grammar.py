@@ -182,8 +182,7 @@ CONNECTORS: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("after", "which"), ("afterwards",), ("afterward",), ("finally",), ("lastly",), ("first",), ("firstly",),
     ("first", "of", "all"), ("secondly",), ("thirdly",), ("next",), ("then", "after", "that"), ("once", "done"),
     ("when", "done"), ("once", "there"), ("when", "there"), ("once", "you", "are", "there"),
-    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "arrive"),
-    ("once", "you", "arrive"), ("when", "you", "are", "there"), ("when", "youre", "there"),
+    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "are", "there"), ("when", "youre", "there"),
     ("once", "you", "get", "there"), ("when", "youre", "done"), ("once", "youre", "done"),
     ("when", "you", "are", "done"), ("once", "youve", "done", "that"), ("when", "youve", "done", "that"),
     ("once", "thats", "done"), ("when", "thats", "done"), ("followed", "by"), ("and", "followed", "by"),
@@ -463,6 +462,7 @@ class _State:
     last_place: str = ""
     topic: str = ""  # a bare noun phrase said before the command ("the kitchen, go there")
     first: bool = True
+    subordinate: bool = False  # reading "when you ...": "you" is the subject, so no ellipsis
 
     def at(self, i: int) -> str:
         return self.toks[i] if i < self.n else ""
@@ -628,7 +628,7 @@ _NUMBER_STARTS = frozenset({
     "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
     "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
     "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
-    "couple", "few", "zero", "full", "complete", "whole", "pair", "pi", "point",
+    "couple", "few", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
 })
 
 
@@ -905,6 +905,8 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
         if s.at(j) == "for":
             j += 1
         elif verb in ("search", "scan", "check"):
+            if s.at(j) in ("in", "inside", "through", "of"):
+                j += 1  # "search in the kitchen for ...", "have a search of the kitchen for ..."
             words, e = _np(s, j)
             area = _place(s, words)
             if area is None:
@@ -959,9 +961,10 @@ def _find_noun(s: _State, i: int) -> Result:
     m = k + 1
     while s.at(m) in ("around", "about", "round"):
         m += 1
-    if s.at(m) != "for" and s.toks[k] not in ("search", "scan", "check"):
-        return None
-    return _find(s, k, s.toks[k] if s.toks[k] in FIND_VERBS else "look")
+    if s.at(m) == "for":
+        return _find(s, k, "look")
+    # "have a search of the kitchen for the cup", "take a look around the kitchen for the cup"
+    return _find(s, m - 1 if s.at(m) in ("of", "in", "inside", "through") else k, "check")
 
 
 def _way_to(s: _State, m: int) -> Result:
@@ -1445,7 +1448,8 @@ def _verbless(s: _State, i: int) -> Result:
             if got is not None and _done(s, got[1]):
                 return got
         return None
-    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS):
+    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
+            not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
         words, j = _np(s, i)
         if not words or not _done(s, j):
             return None
@@ -1552,6 +1556,10 @@ class Grammar:
                 i += 1
                 continue
             subordinate = False
+            if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
+                    "you", "youve", "youre", "u"):
+                i += 2
+                t = "once"  # "as soon as you get to the kitchen": like "once you ..."
             if t in SUBORDINATORS and i + 1 < n and (toks[i + 1] in ("you", "youve", "youre", "u") or (
                     t == "after" and toks[i + 1] in ALL_VERBS)):
                 # "when you find it, pick it up": the clause says what happens first; it is kept
@@ -1570,7 +1578,9 @@ class Grammar:
             start = i
             got = _arrival(s, i) if subordinate and t != "if" else None
             if got is None:
+                s.subordinate = subordinate
                 got = _clause(s, i)
+                s.subordinate = False
             if got is None:
                 if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
                     i = _skip_rest(s, i + 1)
@@ -1611,11 +1621,11 @@ class Grammar:
 
 def _arrival(s: _State, i: int) -> Result:
     """After "when you" / "once you": being somewhere is getting there ("once you're at the
-    workbench, pick up the screwdriver", "when you are in the kitchen ..."): navigate_to_marker,
+    workbench, pick up the screwdriver", "when you arrive in the kitchen ..."): navigate_to_marker,
     dropped like any subordinate clause when it repeats the navigation before it. (After "if"
     it is a condition, not a plan.)"""
-    if s.at(i) in ("are", "re"):
-        i += 1
+    if s.at(i) in ("are", "re", "arrive", "arrived", "get", "got"):
+        i += 1  # "when you are at ...", "once you arrive at ..."
     if s.at(i) not in ("at", "in", "inside", "by", "near"):
         return None
     words, e = _np(s, i + 1)
