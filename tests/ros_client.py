@@ -25,6 +25,7 @@ import time
 
 import rclpy
 from geometry_msgs.msg import PoseStamped
+from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -93,9 +94,16 @@ def main() -> int:
             pub.publish(String(data=cmd["data"]))
             emit({"sent": pub.topic_name, "t": t})
         elif "pub_int" in cmd:
-            pub = node.create_publisher(Int32, cmd["pub_int"], qos)
+            # DDS allows one type per topic in a participant: the wrong-typed writer gets its own
+            other = Context()
+            rclpy.init(context=other)
+            wrong = Node("wrong_type_publisher", namespace=namespace, context=other)
+            pub = wrong.create_publisher(Int32, cmd["pub_int"], qos)
+            time.sleep(0.5)  # give discovery a chance to see (and refuse) the wrong type
             pub.publish(Int32(data=int(cmd["data"])))
             emit({"sent": pub.topic_name, "t": time.monotonic(), "type": "std_msgs/Int32"})
+            wrong.destroy_node()
+            rclpy.shutdown(context=other)
     stopping.set()
     spinner.join()
     executor.shutdown()
