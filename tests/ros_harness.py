@@ -51,16 +51,21 @@ class _Lines:
                 self.lines.append(line.rstrip("\n"))
                 self._cond.notify_all()
 
-    def wait_for(self, pred: Callable[[str], bool], timeout: float) -> str | None:
+    def wait_for(self, pred: Callable[[str], bool], timeout: float, since: int = 0) -> str | None:
+        """The first line from index ``since`` on that ``pred`` accepts, waiting for it; each line
+        is looked at once."""
+        deadline = time.monotonic() + timeout
+        index = since
         with self._cond:
-            found: list[str] = []
-
-            def seen() -> bool:
-                found[:] = [x for x in self.lines if pred(x)][:1]
-                return bool(found)
-
-            self._cond.wait_for(seen, timeout)
-            return found[0] if found else None
+            while True:
+                while index < len(self.lines):
+                    if pred(self.lines[index]):
+                        return self.lines[index]
+                    index += 1
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    return None
+                self._cond.wait(remaining)
 
 
 class BridgeProcess:
@@ -119,26 +124,31 @@ class RosClient:
     def on(self, topic: str) -> list[dict[str, Any]]:
         return [m for m in self.received if m.get("topic") == topic]
 
+    @property
+    def mark(self) -> int:
+        """The number of lines received so far: pass it as ``since`` to wait for later ones."""
+        return len(self.out.lines)
+
     def publish(self, topic: str, data: Any, int32: bool = False) -> float:
         """Publish on ``topic`` (relative to the client's namespace); the client's send time."""
-        sent_before = self._sent()
+        since = self.mark
         self.proc.stdin.write(json.dumps({"pub_int" if int32 else "pub": topic, "data": data}) + "\n")
         self.proc.stdin.flush()
-        if self.out.wait_for(lambda x: self._sent() > sent_before, 30) is None:
+        line = self.out.wait_for(lambda x: x.startswith('{"sent"'), 30, since)
+        if line is None:
             raise RuntimeError(f"the client did not publish on {topic}: {self.err.lines[-3:]}")
-        return [m for m in self.received if "sent" in m][-1]["t"]
+        return json.loads(line)["t"]
 
-    def _sent(self) -> int:
-        return sum('"sent"' in x for x in list(self.out.lines))
-
-    def wait_for(self, pred: Callable[[dict[str, Any]], bool], timeout: float = 60.0) -> dict[str, Any] | None:
+    def wait_for(self, pred: Callable[[dict[str, Any]], bool], timeout: float = 60.0,
+                 since: int = 0) -> dict[str, Any] | None:
+        """The first message (from line ``since`` on) that ``pred`` accepts, waiting for it."""
         def match(line: str) -> bool:
             try:
                 return line.startswith("{") and pred(json.loads(line))
             except (ValueError, KeyError, TypeError):
                 return False
 
-        line = self.out.wait_for(match, timeout)
+        line = self.out.wait_for(match, timeout, since)
         return json.loads(line) if line else None
 
     def close(self) -> None:

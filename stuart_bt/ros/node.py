@@ -58,6 +58,7 @@ class Bridge:
         self._events: queue.SimpleQueue[Event] = queue.SimpleQueue()
         self._stopping = threading.Event()
         self._thread: threading.Thread | None = None
+        self._ros_thread: int | None = None  # ident of the spinning thread
         self.ignored = 0  # malformed input messages logged and dropped
 
         reliable = QoSProfile(depth=QUEUE_DEPTH, reliability=ReliabilityPolicy.RELIABLE)
@@ -93,6 +94,7 @@ class Bridge:
         return self
 
     def spin(self) -> None:
+        self._ros_thread = threading.get_ident()
         while not self._stopping.is_set() and self.context.ok():
             try:
                 self.executor.spin_once(timeout_sec=SPIN_SLICE)
@@ -129,9 +131,14 @@ class Bridge:
 
     # -- events -> ROS ------------------------------------------------------------------------------
     def on_event(self, event: Event) -> None:
-        """Event stream subscriber: never blocks (a queue put and a trigger)."""
+        """Event stream subscriber: never blocks (a queue put and a trigger). An event published
+        by the ROS thread itself (``submit`` from an input callback publishes the ``utterance``)
+        is sent at once, after what was queued before it: the intent then leaves before the
+        mission is even accepted, and order is kept."""
         self._events.put(event)
-        if not self._stopping.is_set():
+        if threading.get_ident() == self._ros_thread:
+            self._drain()
+        elif not self._stopping.is_set():
             self._wake.trigger()
 
     def _drain(self) -> None:
