@@ -142,3 +142,29 @@ def test_a_bad_namespace_or_domain_is_one_clear_line_and_nothing_starts():
     time.sleep(0.1)
     assert bad_domain.err.lines == ["stuart-bt: ROS_DOMAIN_ID must be a whole number from 0 to 232, not '900'"]
     assert os.environ.get("ROS_DOMAIN_ID") != "900"
+
+
+def test_a_pick_target_label_starts_a_pick_that_waits_for_confirm_on_the_same_topic():
+    with BridgeProcess("--backend", "sim", "--start", "kitchen", "--confirm-picks") as bridge:
+        bridge.up()
+        with RosClient() as client:
+            client.publish("pick_target", "bottle")
+            waiting = client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"awaiting_confirm":true' in m["data"],
+                                      timeout=120)
+            time.sleep(1.0)  # the arm holds still meanwhile
+            held = [json.loads(m["data"]) for m in client.on("/bt/events")]
+            since = client.mark
+            client.publish("pick_target", "confirm")
+            finished = client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"phase":"finished"' in m["data"],
+                                       timeout=180, since=since)
+
+    assert waiting is not None, "the pick never waited for confirmation"
+    assert [(i["action"], i["target"]) for i in intents(client)] == [("pick_up", "bottle")]
+    picks = [e for e in (json.loads(m["data"]) for m in client.on("/bt/events")) if e["kind"] == "leaf"
+             and e.get("skill") == "pick"]
+    assert not [e for e in held if e["kind"] == "leaf" and e.get("skill") == "pick"]  # held until confirmed
+    assert [e["outcome"] for e in picks] == ["SUCCESS"]
+    assert json.loads(finished["data"])["status"] == "succeeded"
+    confirm = [json.loads(m["data"]) for m in client.on("/bt/events")
+               if '"cmd":"confirm"' in m["data"] and '"kind":"command"' in m["data"]]
+    assert len(confirm) == 1 and confirm[0]["family"] == "pick"
