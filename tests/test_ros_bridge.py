@@ -154,5 +154,6 @@ def test_a_bad_namespace_or_domain_is_one_clear_line_and_nothing_starts():
     bad_domain.err.wait_for(lambda x: True, 5)
 
     assert len(bad_ns.err.lines) == 1 and bad_ns.err.lines[0].startswith("stuart-bt: bad --namespace 'lab robot!': ")
+    assert bad_ns.err.lines[0].endswith("(try '/lab_robot_')")
     assert bad_domain.err.lines == ["stuart-bt: ROS_DOMAIN_ID must be a whole number from 0 to 232, not '900'"]
     assert bad_ns.out.lines == bad_domain.out.lines == []  # no node, no daemons

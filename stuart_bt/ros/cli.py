@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import signal
 import sys
 import threading
@@ -94,8 +95,15 @@ def _check(args: argparse.Namespace) -> str | None:
     try:
         validate_namespace(_namespace(args.namespace))
     except InvalidNamespaceException as e:
-        return f"bad --namespace {args.namespace!r}: {str(e).splitlines()[0]}"
+        why = str(e).splitlines()[0].removeprefix("Invalid namespace: ").rstrip(": ")
+        return f"bad --namespace {args.namespace!r}: {why} (try {_closest_namespace(args.namespace)!r})"
     return None
+
+
+def _closest_namespace(ns: str) -> str:
+    """A valid namespace like ``ns``: other characters become '_', no empty or digit-led parts."""
+    parts = [re.sub(r"\W", "_", p, flags=re.ASCII) for p in ns.split("/") if p]
+    return "/" + "/".join(p if not p[0].isdigit() else "_" + p for p in parts)
 
 
 def _namespace(ns: str) -> str:
