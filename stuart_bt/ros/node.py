@@ -139,7 +139,10 @@ class Bridge:
         if threading.get_ident() == self._ros_thread:
             self._drain()
         elif not self._stopping.is_set():
-            self._wake.trigger()
+            try:
+                self._wake.trigger()
+            except Exception:  # noqa: BLE001 - destroyed under a late publisher: close() drains the queue
+                pass
 
     def _drain(self) -> None:
         while True:
