@@ -36,6 +36,7 @@ EXPECTED = [
     *(f"mission.{figure}.{q}" for figure in ("utterance_to_first_command", "stop_to_all_daemons")
       for q in ("p50", "p99")),
     "llm.first_token", "llm.reply", "llm.cold_first_token",
+    "ros.audio_to_intent.p50", "ros.audio_to_intent.p99",
 ]
 
 

@@ -198,11 +198,15 @@ class MissionExecutor:
         return {"succeeded": "SUCCESS", "stopped": "STOPPED"}.get(last, "FAILURE")
 
     # -- input --------------------------------------------------------------------------------------
-    def submit(self, utterance: str) -> Command:
-        """Take one utterance (any thread); returns at once with what it was understood as."""
-        command = interpret(self.parser, utterance)
+    def submit(self, utterance: str, woken: bool = False) -> Command:
+        """Take one utterance (any thread); returns at once with what it was understood as.
+        ``woken``: treat it as if the wake phrase had been said (an input that filtered it already).
+        The ``utterance`` event's ``parsed`` holds every intent the grammar found (the
+        ``stuart-bt parse`` intents, a leading ``stop`` included); ``intents`` the ones to plan."""
+        command = interpret(self.parser, utterance, woken)
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
-                            intents=[i.to_dict() for i in command.intents])
+                            intents=[i.to_dict() for i in command.intents],
+                            parsed=[i.to_dict() for i in command.parse.intents])
         if command.kind == IGNORE:
             return command
         if command.kind == STOP:
@@ -214,6 +218,28 @@ class MissionExecutor:
         if command.intents:
             self._accept(utterance, command.intents, replace=command.replace)
         return command
+
+    def daemon_request(self, family: str, cmd: str, args: dict[str, Any] | None = None) -> bool:
+        """Send one command to a skill daemon from the tick thread (the supervisor belongs to it),
+        before the running tree's next tick: e.g. ``("pick", "confirm")`` for the pick
+        confirmation gate. False (and nothing is sent) when no tree is running: a command kept for
+        a later tree could confirm a pick nobody has seen yet."""
+        with self._cond:
+            executor = self._executor
+            if executor is None or self.session.supervisor is None:
+                return False
+            supervisor = self.session.supervisor
+            if family not in supervisor.families:
+                raise ValueError(f"no {family!r} daemon; the daemons are {', '.join(supervisor.families)}")
+            sent: list[bool] = []
+
+            def send() -> None:  # once; it stays in the list (removing it mid-iteration skips a hook)
+                if not sent:
+                    sent.append(True)
+                    supervisor.client(family).request(cmd, args or {})
+
+            executor.pre_tick.append(send)
+            return True
 
     def _stop(self, command: Command) -> None:
         with self._cond:
