@@ -18,6 +18,7 @@ Event kinds used by the framework (``data`` keys in brackets):
 - ``blackboard``: a key was written [key, value]
 - ``warning``: something a user should see (tick overrun, garbage line) [message]
 - ``utterance`` / ``reply``: conversation in and out [text]
+- ``memory``: the spatial memory after a ``find`` [format, t, frame, objects] (docs/perception.md)
 """
 
 from __future__ import annotations

@@ -485,7 +485,8 @@ def _all_families_spec(markers_file: str) -> TreeSpec:
     leaves = [NodeSpec("speak", "speak", "daemons/speak", where, {"text": ""}),
               NodeSpec("navigate", "navigate", "daemons/navigate", where, {"dx": 0}),
               NodeSpec("gesture", "gesture", "daemons/gesture", where, {"play": "clap"}),
-              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"})]
+              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"}),
+              NodeSpec("find", "find", "daemons/find", where, {"object": "cup"})]
     return TreeSpec(NodeSpec("sequence", "daemons", "daemons", where, {}, leaves), "<missions>",
                     markers_file=markers_file)
 

@@ -63,6 +63,7 @@ class SimCamera(CameraSource):
         self.noise = noise or DepthNoise()
         self.rng = np.random.default_rng(seed)
         self.far = far
+        self.last_pose = Pose()  # the localised pose of the latest frame
         self._dir = Path(tempfile.mkdtemp(prefix="stuart_cam_", dir="/dev/shm" if Path("/dev/shm").is_dir() else None))
 
     def read(self) -> Frame:
@@ -78,10 +79,11 @@ class SimCamera(CameraSource):
         if self.noise.active:
             depth = self.noise.apply(depth, self.rng)
         k = reply["intrinsics"]
+        self.last_pose = Pose.from_dict(reply["base"])
         return Frame(
             rgb=np.load(reply["path"]), depth=depth,
             intrinsics=Intrinsics(k["fx"], k["fy"], k["cx"], k["cy"], self.width, self.height),
-            t=float(reply["t"]), robot_pose=Pose.from_dict(reply["base"]),
+            t=float(reply["t"]), robot_pose=self.last_pose,
             labels=np.load(reply["labels_path"]), label_names=tuple(reply["label_names"]),
         )
 
