@@ -170,6 +170,7 @@ VOICE_COMMANDS = {
     "plan": ("stuart_bt.htn.explain:add_plan_command", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
+    "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
 }
 
 
