@@ -97,3 +97,13 @@ def test_the_framework_never_imports_a_vendor_sdk(tmp_path):
 def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
     modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
     assert forbidden(modules, ROS) == ["rosidl_probe_absent"]
+
+
+def test_the_vision_daemon_renders_through_the_world_and_never_loads_mujoco_itself(tmp_path):
+    """Perception runs in its own process with OpenCV; MuJoCo (and its GL context) stays in the
+    world server, so a vision daemon costs no second renderer."""
+    modules = imports_of(tmp_path, "vision-sim", "daemon", "stuart_bt.skills.vision", "--backend", "sim",
+                         "--clock", "wall")
+    assert {"stuart_bt.skills.vision.sim", "stuart_bt.perception.pipeline", "cv2"} <= modules
+    assert forbidden(modules, ("mujoco",)) == []
+    assert forbidden(modules, VENDOR + ROS) == []

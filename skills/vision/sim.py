@@ -51,6 +51,15 @@ class SimVision(VisionBackend):
         self.perception = Perception(SimDetector(float(options.get("threshold", 0.75))), CameraMount.sim(), self.spatial)
         self.frames = 0
         self.last: list[dict[str, Any]] = []
+        self._warm_up()
+
+    def _warm_up(self) -> None:
+        """One frame before READY: the world's first render creates its GL context (~2 s), which
+        belongs to start-up, not to the first find (a run without vision never pays it)."""
+        try:
+            self.camera.read()
+        except CameraError as e:
+            raise RuntimeError(f"the sim camera does not work: {e}") from None
 
     def frame(self) -> list[Located]:
         """One frame through the pipeline (the memory is updated)."""

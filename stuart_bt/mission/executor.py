@@ -242,8 +242,10 @@ class MissionExecutor:
             self._cond.notify_all()
 
     def _converse(self, text: str) -> None:
+        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+
         context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None,
-                   "detections": sorted(self.world.objects)}  # memory stands in until perception lands
+                   "detections": seen_objects(self.world, self.session.clock.now())}
         with self._cond:
             self._pending_replies += 1
 
