@@ -144,7 +144,7 @@ def test_stop_halts_within_one_tick_every_daemon_gets_stop_the_queue_is_cleared_
 
 
 def test_a_moved_bottle_is_looked_for_again_and_picked_after_one_repair():
-    moved = {"bottle": {"x": 3.0, "y": 2.3, "z": 0.78}}  # not on the kitchen table, where memory has it
+    moved = {"bottle": {"x": 2.8, "y": 2.5, "z": 0.78}}  # not on the kitchen table, where memory has it
     with robot(daemon_options={"pick": {"objects": moved}, "vision": {"objects": moved}}) as (mx, trace):
         mx.submit("Hey Stuart, pick up the bottle")
         assert mx.wait_idle(30)
@@ -232,4 +232,4 @@ def test_the_issue_example_picks_the_bottle_in_the_sim_and_waves_with_it():
 
     assert mx.missions[0].status == "succeeded"
     assert trace.said() == ["Navigating to the kitchen", "Picking up the bottle", "Doing a wave"]
-    assert mx.world.held == "bottle" and held["right"] == "bottle"  # the world's hand really holds it
+    assert mx.world.held == "bottle" and "bottle" in held.values()  # a hand in the world really holds it

@@ -42,6 +42,7 @@ class Footprint:
     centre: tuple[float, float]
     radius: float | None = None
     polygon: tuple[tuple[float, float], ...] = ()
+    z_low: float = 0.0  # the geom's lowest point: a table top leaves room for feet below it
 
     def distance(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """Distance from points to the outline (0 inside)."""
@@ -88,11 +89,13 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         if gtype in (int(mujoco.mjtGeom.mjGEOM_CYLINDER), int(mujoco.mjtGeom.mjGEOM_CAPSULE)) and vertical:
             half = size[1] + (size[0] if gtype == int(mujoco.mjtGeom.mjGEOM_CAPSULE) else 0.0)
             if _blocks(pos[2] - half, pos[2] + half):
-                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0])))
+                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
+                                     z_low=float(pos[2] - half)))
             continue
         if gtype == int(mujoco.mjtGeom.mjGEOM_SPHERE):
             if _blocks(pos[2] - size[0], pos[2] + size[0]):
-                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0])))
+                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
+                                     z_low=float(pos[2] - size[0])))
             continue
         # Anything else: the geom's own bounding box, turned into the world and projected.
         centre, half = model.geom_aabb[g, :3], model.geom_aabb[g, 3:]
@@ -101,7 +104,7 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         if not _blocks(corners[:, 2].min(), corners[:, 2].max()):
             continue
         hull = _convex_hull([(float(c[0]), float(c[1])) for c in corners])
-        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull)))
+        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull), z_low=float(corners[:, 2].min())))
     return out
 
 
@@ -137,10 +140,18 @@ def clearance(footprints: Sequence[Footprint], x: float, y: float) -> float:
     return float(min((fp.distance(px, py)[0] for fp in footprints), default=math.inf))
 
 
-def footprint_hits(footprints: Sequence[Footprint], x: float, y: float, radius: float) -> list[str]:
-    """Names of the obstacles a round footprint of ``radius`` at (x, y) overlaps."""
+def footprint_hits(footprints: Sequence[Footprint], x: float, y: float, radius: float,
+                   raised: tuple[float, float] | None = None) -> list[str]:
+    """Names of the obstacles a round footprint of ``radius`` at (x, y) overlaps. With ``raised``
+    = (height, radius), an obstacle whose lowest point is above ``height`` (a table top: the feet
+    go under it) is checked against that smaller radius (the body at that height) instead."""
     px, py = np.array([x]), np.array([y])
-    return [fp.name for fp in footprints if fp.distance(px, py)[0] < radius]
+    hits = []
+    for fp in footprints:
+        r = raised[1] if raised is not None and fp.z_low > raised[0] else radius
+        if fp.distance(px, py)[0] < r:
+            hits.append(fp.name)
+    return hits
 
 
 def _disc_dilate(mask: np.ndarray, radius_cells: int) -> np.ndarray:

@@ -46,6 +46,7 @@ from .scene import MAPS_DIR, Scene, build_scene
 
 READ_CHUNK = 1 << 16
 FOOTPRINT_RADIUS = 0.2  # the base's own footprint (legs and feet) for the collision flag (m)
+RAISED = (0.45, 0.12)  # above knee height (m), e.g. a table top, only the hips and torso (radius m) can touch
 PERSON_HEIGHT = 1.7
 PERSON_PARK = (-4.0, -6.0, -3.0)  # outside the walls and under the floor: out of every view
 PATH_LOG_STEP = 0.02  # metres between logged points of the driven path
@@ -163,7 +164,7 @@ class World:
         row, col = self.grid.world_to_cell(b.x, b.y)
         hit = not self.grid.inside(row, col) or bool(self._footprint_mask[row, col])
         if hit:  # the grid is coarse: confirm with the exact outlines
-            self.collision = footprint_hits(self._footprints, b.x, b.y, FOOTPRINT_RADIUS)
+            self.collision = footprint_hits(self._footprints, b.x, b.y, FOOTPRINT_RADIUS, RAISED)
             self.collided = self.collided or bool(self.collision)
         else:
             self.collision = []
