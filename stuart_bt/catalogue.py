@@ -177,9 +177,9 @@ LEAVES: dict[str, LeafSpec] = {
         ),
         LeafSpec(
             "find",
-            "Locate an object by label; its position goes to the world state.",
+            "Look for an object by label with the head camera; its position goes to the world state.",
             (Param("object", "string", "Object label, e.g. 'cup'.", required=True),),
-            family="pick",
+            family="vision",
             shorthand="object",
             default_timeout=60.0,
         ),
@@ -231,7 +231,7 @@ LEAVES: dict[str, LeafSpec] = {
 }
 
 SKILLS = tuple(n for n, s in LEAVES.items() if s.family is not None or n in ("wait", "stop"))
-FAMILIES = ("loco", "tts", "gesture", "pick")
+FAMILIES = ("loco", "tts", "gesture", "pick", "vision")
 
 
 @dataclass(frozen=True)

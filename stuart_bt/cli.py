@@ -171,6 +171,7 @@ VOICE_COMMANDS = {
     "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
     "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
+    "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
 }
 
 

@@ -217,7 +217,9 @@ def test_pick_holds_release_puts_down_in_front_and_both_refuse_the_wrong_state(d
 
 
 def test_find_reports_position_and_distance_after_a_short_search(daemon):
-    pick = daemon("pick", objects={"mug": {"x": 1.3, "y": -3.4, "z": 0.9}})
-    found = run(pick, "find", object="mug", robot_pose=WORKBENCH)
-    assert found.result == {"object": "mug", "position": {"x": 1.3, "y": -3.4, "z": 0.9}, "distance": 0.5}
-    assert run(pick, "find", object="cup", robot_pose=WORKBENCH).error_code == "not_found"  # options replace the file
+    vision = daemon("vision", objects={"mug": {"x": 1.3, "y": -3.4, "z": 0.9}})
+    found = run(vision, "find", object="mug", robot_pose=WORKBENCH)
+    assert {k: found.result[k] for k in ("object", "position", "distance")} == {
+        "object": "mug", "position": {"x": 1.3, "y": -3.4, "z": 0.9}, "distance": 0.5}
+    assert [o["label"] for o in found.result["memory"]["objects"]] == ["mug"]
+    assert run(vision, "find", object="cup", robot_pose=WORKBENCH).error_code == "not_found"  # options replace the file

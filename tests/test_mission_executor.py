@@ -13,7 +13,7 @@ import pytest
 from stuart_bt.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
-FAMILIES = {"loco", "tts", "gesture", "pick"}
+FAMILIES = {"loco", "tts", "gesture", "pick", "vision"}
 KITCHEN = "Hey Stuart, go to the kitchen"
 
 
@@ -145,7 +145,7 @@ def test_stop_halts_within_one_tick_every_daemon_gets_stop_the_queue_is_cleared_
 
 def test_a_moved_bottle_is_looked_for_again_and_picked_after_one_repair():
     moved = {"bottle": {"x": 2.8, "y": 2.5, "z": 0.78}}  # not on the kitchen table, where memory has it
-    with robot(daemon_options={"pick": {"objects": moved}}) as (mx, trace):
+    with robot(daemon_options={"pick": {"objects": moved}, "vision": {"objects": moved}}) as (mx, trace):
         mx.submit("Hey Stuart, pick up the bottle")
         assert mx.wait_idle(30)
 
@@ -161,7 +161,7 @@ def test_a_moved_bottle_is_looked_for_again_and_picked_after_one_repair():
 
 def test_repairs_stop_at_the_cap_and_the_robot_says_why_in_one_sentence():
     elsewhere = {"cup": {"x": 1.3, "y": -3.2, "z": 0.9}}  # no bottle anywhere
-    with robot(daemon_options={"pick": {"objects": elsewhere}}) as (mx, trace):
+    with robot(daemon_options={"pick": {"objects": elsewhere}, "vision": {"objects": elsewhere}}) as (mx, trace):
         mx.submit("Hey Stuart, pick up the bottle")
         assert mx.wait_idle(30)
 

@@ -138,3 +138,11 @@ def test_a_process_cannot_hold_both_the_ros_bridge_and_the_vendor_sdk(first, the
     assert run.returncode != 0
     last = run.stderr.strip().splitlines()[-1]
     assert last.startswith("ImportError:") and "vendor SDK" in last and "daemons" in last
+def test_the_vision_daemon_renders_through_the_world_and_never_loads_mujoco_itself(tmp_path):
+    """Perception runs in its own process with OpenCV; MuJoCo (and its GL context) stays in the
+    world server, so a vision daemon costs no second renderer."""
+    modules = imports_of(tmp_path, "vision-sim", "daemon", "stuart_bt.skills.vision", "--backend", "sim",
+                         "--clock", "wall")
+    assert {"stuart_bt.skills.vision.sim", "stuart_bt.perception.pipeline", "cv2"} <= modules
+    assert forbidden(modules, ("mujoco",)) == []
+    assert forbidden(modules, VENDOR + ROS) == []

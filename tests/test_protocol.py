@@ -17,7 +17,7 @@ from stuart_bt.clock import ScaledClock
 from stuart_bt.daemon import protocol as p
 
 FAMILY_COMMANDS = {"loco": ["navigate", "turn"], "tts": ["say"], "gesture": ["play"],
-                   "pick": ["pick", "release", "find"]}
+                   "pick": ["pick", "release"], "vision": ["find", "look", "memory"]}
 
 
 class Wire:

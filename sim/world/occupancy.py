@@ -22,7 +22,7 @@ import math
 from collections import deque
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -308,9 +308,11 @@ class OccupancyGrid:
 
 def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]],
                  path_points: Sequence[tuple[float, float]], objects: Mapping[str, Mapping[str, float]],
-                 out_path: str | Path, scale: int = 4) -> Path:
+                 out_path: str | Path, scale: int = 4, memory: Sequence[Mapping[str, Any]] = ()) -> Path:
     """The map with what happened on it: obstacles (and their inflation), named markers with
-    their headings, the driven path (start green, end red) and the objects where they are."""
+    their headings, the driven path (start green, end red), the objects where they are, and the
+    spatial memory (``memory``: entries of a memory summary, drawn as rings sized by their
+    confidence, so where the robot *believes* things are can be compared with where they are)."""
     from PIL import Image, ImageDraw, ImageFont
 
     rows, cols = grid.shape
@@ -361,6 +363,13 @@ def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]]
         r = 0.05 * metre
         draw.rectangle([cx - r, cy - r, cx + r, cy + r], fill=(200, 30, 120))
         draw.text((cx + r + 2, cy + 1), label, fill=(150, 20, 90), font=font, stroke_width=2,
+                  stroke_fill=(255, 255, 255))
+    for entry in memory:
+        cx, cy = px(float(entry["x"]), float(entry["y"]))
+        r = (0.06 + 0.08 * max(0.0, min(1.0, float(entry.get("confidence", 1.0))))) * metre
+        draw.ellipse([cx - r, cy - r, cx + r, cy + r], outline=(0, 150, 170), width=max(2, scale // 2))
+        draw.text((cx + r + 2, cy - r - 2 * scale), f"{entry.get('id', entry.get('label', '?'))} "
+                  f"{float(entry.get('confidence', 1.0)):.2f}", fill=(0, 110, 130), font=font, stroke_width=2,
                   stroke_fill=(255, 255, 255))
     out_path = Path(out_path)
     out_path.parent.mkdir(parents=True, exist_ok=True)

@@ -270,8 +270,10 @@ class MissionExecutor:
             self._cond.notify_all()
 
     def _converse(self, text: str) -> None:
+        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+
         context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None,
-                   "detections": sorted(self.world.objects)}  # memory stands in until perception lands
+                   "detections": seen_objects(self.world, self.session.clock.now())}
         with self._cond:
             self._pending_replies += 1
 
@@ -534,7 +536,8 @@ def _all_families_spec(markers_file: str) -> TreeSpec:
     leaves = [NodeSpec("speak", "speak", "daemons/speak", where, {"text": ""}),
               NodeSpec("navigate", "navigate", "daemons/navigate", where, {"dx": 0}),
               NodeSpec("gesture", "gesture", "daemons/gesture", where, {"play": "clap"}),
-              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"})]
+              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"}),
+              NodeSpec("find", "find", "daemons/find", where, {"object": "cup"})]
     return TreeSpec(NodeSpec("sequence", "daemons", "daemons", where, {}, leaves), "<missions>",
                     markers_file=markers_file)
 
