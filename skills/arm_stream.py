@@ -127,6 +127,12 @@ class ArmStreamer:
             program = self._program
             return program is None or (not program.hold and time.monotonic() - self._started >= program.length)
 
+    def settled(self) -> bool:
+        """The current program has reached its last keyframe (a holding one keeps holding)."""
+        with self._lock:
+            program = self._program
+            return program is None or time.monotonic() - self._started >= program.ramp + program.frames[-1][0]
+
     def targets(self) -> Targets:
         with self._lock:
             return dict(self._last[1])
