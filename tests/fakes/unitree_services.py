@@ -41,7 +41,7 @@ from unitree_sdk2py.utils.crc import CRC
 VERSIONS = {"sport": "1.0.0.0", "loco": "1.0.0.0", "voice": "1.0.0.0", "arm": "1.0.0.14", "slam_operate": "1.0.0.1"}
 HOLDING_ACTIONS = {15, 18, 19, 20, 21, 23, 27}
 KNOWN_ACTIONS = {99, 11, 12, 13, 15, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27}
-ACTION_SECONDS = 0.3  # the fake plays every arm action this long (the daemon waits longer)
+ACTION_SECONDS = 0.1  # the fake plays every arm action this long (the daemon waits longer)
 WEIGHT_MOTOR = 29
 
 
@@ -53,7 +53,7 @@ class Robot:
         self.out = out
         self.nav_speed = nav_speed
         self.x = self.y = self.yaw = 0.0
-        self.localised = False
+        self.localised = True  # SLAM already localised (at 0, 0, 0) unless a relocalisation moves it
         self.velocity = (0.0, 0.0, 0.0)
         self.velocity_until = 0.0
         self.goal: tuple[float, float, float] | None = None
