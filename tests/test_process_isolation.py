@@ -97,6 +97,23 @@ def test_the_framework_never_imports_a_vendor_sdk(tmp_path):
     assert forbidden(modules, VENDOR) == []
 
 
+@pytest.mark.parametrize("family", FAMILIES)
+def test_a_unitree_daemon_loads_the_vendor_sdk_itself(tmp_path, family):
+    """The SDK lives in the daemon process (it exits before READY here: no robot answers)."""
+    pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
+    modules = imports_of(tmp_path, f"{family}-unitree", "daemon", f"stuart_bt.skills.{family}", "--backend", "unitree",
+                         "--clock", "wall", "--options", '{"interface": "lo", "domain": 231, "probe_timeout": 0.2}')
+    assert "unitree_sdk2py" in modules and "cyclonedds" in modules
+    assert forbidden(modules, ROS) == []
+
+
+def test_the_map_command_leaves_the_vendor_sdk_to_the_loco_daemon(tmp_path):
+    code = "from stuart_bt.cli import main\nmain(['map', 'close', '--interface', 'lo', '--domain', '231'])"
+    modules = imports_of(tmp_path, "map-cli", "code", code)
+    assert {"stuart_bt.map_cli", "stuart_bt.daemon.supervisor"} <= modules
+    assert forbidden(modules, VENDOR) == []
+
+
 def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
     modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
     assert forbidden(modules, ROS) == ["rosidl_probe_absent"]
