@@ -39,6 +39,7 @@ EXPECTED = [
     "ros.audio_to_intent.p50", "ros.audio_to_intent.p99",
     *(f"perception.{figure}" for figure in ("position.error_mean", "position.error_max", "pipeline.rate", "render.fps",
                                             "tour.real_time_factor_with_vision")),
+    "web.tick_overhead.flip-10", "web.tick_overhead.flip-100", "web.latency.p50", "web.latency.p99",
 ]
 
 

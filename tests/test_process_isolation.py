@@ -155,6 +155,8 @@ def test_a_process_cannot_hold_both_the_ros_bridge_and_the_vendor_sdk(first, the
     assert run.returncode != 0
     last = run.stderr.strip().splitlines()[-1]
     assert last.startswith("ImportError:") and "vendor SDK" in last and "daemons" in last
+
+
 def test_the_vision_daemon_renders_through_the_world_and_never_loads_mujoco_itself(tmp_path):
     """Perception runs in its own process with OpenCV; MuJoCo (and its GL context) stays in the
     world server, so a vision daemon costs no second renderer."""
@@ -163,3 +165,37 @@ def test_the_vision_daemon_renders_through_the_world_and_never_loads_mujoco_itse
     assert {"stuart_bt.skills.vision.sim", "stuart_bt.perception.pipeline", "cv2"} <= modules
     assert forbidden(modules, ("mujoco",)) == []
     assert forbidden(modules, VENDOR + ROS) == []
+
+
+WEB_SERVER = r"""
+import os, signal, socket, threading, time, urllib.request
+from stuart_bt.cli import main
+
+with socket.socket() as s:
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+
+
+def visit_then_stop():
+    for _ in range(600):
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/state", timeout=2).read()
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/markers", timeout=2).read()
+            break
+        except OSError:
+            time.sleep(0.1)
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+threading.Thread(target=visit_then_stop, daemon=True).start()
+main(["serve", TREE, "--paused", "--port", str(port)])
+"""
+
+
+def test_the_web_server_never_imports_a_vendor_sdk_or_ros(tmp_path):
+    pytest.importorskip("starlette", reason="the web view needs the web extra")
+    tree = Path(__file__).resolve().parents[1] / "trees" / "greet.yaml"
+    modules = imports_of(tmp_path, "web", "code", WEB_SERVER.replace("TREE", repr(str(tree))))
+    assert {"stuart_bt.web.app", "stuart_bt.web.control", "uvicorn", "starlette"} <= modules
+    assert forbidden(modules, VENDOR) == []
+    assert forbidden(modules, ROS) == []
