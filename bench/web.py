@@ -10,7 +10,8 @@ minus the event's publish time (``time.time()`` on both sides: one machine, one 
   ``Executor.tick_once`` at the run's pace (20 Hz of wall time; the quick run 50 Hz), in
   alternating rounds. Each tick is timed on the executor's thread, so what is measured is what
   the executor feels: the hub's subscriber on its thread and the server's work competing for the
-  interpreter between ticks (collector paused in each round, as in the other benchmarks). Figure:
+  interpreter between ticks (collector paused in each round, as in the other benchmarks). A third,
+  identical tree without the web view gives the noise floor of the ratio (an A/A pair). Figure:
   the median tick with the web view; ratio: median over rounds of (median tick web / median tick
   none), goal <= 1.05. Trees: ``flip-10`` (10 status changes every tick: more than a real tree, the tour averages
   well under one per tick) and ``flip-100`` (100 per tick, the worst case, no goal).
@@ -146,20 +147,24 @@ def paced_ticks(ex: Executor, n: int, rate: float) -> list[float]:
 def measure(shape: Shape, ticks: int, rounds: int, rate: float) -> tuple[Result, list[float]]:
     """The overhead figure for ``shape`` and the delays the clients saw."""
     plain, _ = executor(shape, rate)
+    twin, _ = executor(shape, rate)  # a second tree without the web view: the noise floor (A/A)
     watched, events = executor(shape, rate)
     server = Server(events)
     clients = Clients(server.url)
-    ratios, none_ticks, web_ticks = [], [], []
+    candidates = {"none": plain, "twin": twin, "web": watched}
+    ticks_of: dict[str, list[float]] = {name: [] for name in candidates}
+    ratios, floor = [], []
     try:
         for r in range(rounds):
-            order = ("none", "web") if r % 2 == 0 else ("web", "none")
+            names = list(candidates)
             medians = {}
-            for who in order:
+            for name in names[r % 3:] + names[:r % 3]:  # rotating order
                 with gc_paused():  # the collector's pauses land on whoever allocates last (bench/stats.py)
-                    took = paced_ticks(plain if who == "none" else watched, ticks, rate)
-                (none_ticks if who == "none" else web_ticks).extend(took)
-                medians[who] = statistics.median(took)
+                    took = paced_ticks(candidates[name], ticks, rate)
+                ticks_of[name].extend(took)
+                medians[name] = statistics.median(took)
             ratios.append(medians["web"] / medians["none"])
+            floor.append(medians["twin"] / medians["none"])
         time.sleep(0.2)  # the last batch on its way
     finally:
         counts, delays = clients.close()
@@ -168,12 +173,14 @@ def measure(shape: Shape, ticks: int, rounds: int, rate: float) -> tuple[Result,
     if min(counts) < sent:
         raise RuntimeError(f"a client received {min(counts)} of {sent} status events")
     ratio = statistics.median(ratios)
-    none_us, web_us = statistics.median(none_ticks) * 1e6, statistics.median(web_ticks) * 1e6
+    none_us, web_us = statistics.median(ticks_of["none"]) * 1e6, statistics.median(ticks_of["web"]) * 1e6
+    noise = (statistics.median(floor) - 1) * 100
     limit = 1.0 + GOAL_OVERHEAD / 100.0
     goal = f"ratio <= {limit:g} (overhead <= {GOAL_OVERHEAD:g} %)" if shape.size <= 10 else None
     note = (f"{shape.label}: {shape.size} status changes per tick at {rate:g} Hz, with the web view and {CLIENTS} "
-            f"WebSocket client processes; overhead {(ratio - 1) * 100:+.1f} % ({rounds} alternating rounds of "
-            f"{ticks} ticks, ratio = median of per-round ratios; every client received all {sent} status events)")
+            f"WebSocket client processes; overhead {(ratio - 1) * 100:+.1f} %, noise floor (a second tree without "
+            f"the web view against the first) {noise:+.1f} % ({rounds} rounds of {ticks} ticks each, order rotating, "
+            f"ratio = median of per-round ratios; every client received all {sent} status events)")
     if goal is None:
         note += "; worst case (every node changes every tick), no goal"
     result = Result(f"{NAME}.tick_overhead.{shape.label}", web_us, "us/tick",
@@ -194,7 +201,7 @@ def latency(delays: list[float], rate: float, shape: Shape) -> list[Result]:
 
 
 def run(quick: bool = False) -> list[Result]:
-    ticks, rounds, rate = (10, 2, 50.0) if quick else (40, 12, 20.0)
+    ticks, rounds, rate = (10, 3, 50.0) if quick else (40, 12, 20.0)
     small, large = Shape("flip", 10), Shape("flip", 100)
     overhead_small, delays = measure(small, ticks, rounds, rate)
     overhead_large, _ = measure(large, ticks, rounds, rate)
