@@ -198,6 +198,15 @@ def create_app(parts: WebParts) -> Starlette:
             return
         await websocket.accept()
         client, hello = hub.connect()
+
+        async def until_closed() -> None:  # a closed tab ends its sender at once, not at the next send
+            try:
+                while (await websocket.receive())["type"] != "websocket.disconnect":
+                    pass
+            finally:
+                client.end()
+
+        watcher = asyncio.create_task(until_closed())
         try:
             await websocket.send_text(hello)
             while True:
@@ -208,6 +217,7 @@ def create_app(parts: WebParts) -> Starlette:
         except (WebSocketDisconnect, RuntimeError):
             pass
         finally:
+            watcher.cancel()
             hub.disconnect(client)
 
     routes = [

@@ -48,6 +48,13 @@ class Client:
         while not self.queue.empty():
             self.queue.get_nowait()
 
+    def end(self, last: str | None = None) -> None:
+        """Make the socket's sender stop (after ``last``, if given), however full the queue is."""
+        self._drain()
+        if last is not None:
+            self.queue.put_nowait(last)
+        self.queue.put_nowait(None)
+
 
 class EventHub:
     """Keeps the snapshot and history; pushes batches of events to the connected clients."""
@@ -83,7 +90,7 @@ class EventHub:
             self._pump.cancel()
             self._pump = None
         for client in list(self.clients):
-            client.offer(json.dumps({"type": "bye"}))
+            client.end(json.dumps({"type": "bye"}))
 
     # -- publishing thread: as little as possible (the executor is waiting) -------------------------
     def _on_event(self, event: Event) -> None:
