@@ -63,9 +63,9 @@ def cmd_serve(args: argparse.Namespace) -> int:
 def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
     import uvicorn
 
+    from ..world import load_markers
     from .app import WebParts, create_app
     from .gestures import GestureFolder
-    from .hub import EventHub
     from .mapfile import MapFile, default_map
     from .markers import MarkerStore
     from .security import Guard
@@ -83,6 +83,8 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
         if control is not None:
             print(f"starting {what} ...", file=sys.stderr, flush=True)
             control.start()
+            if parts.markers is not None:  # the markers the map shows are the ones "go to" knows
+                control.set_markers(load_markers(parts.markers.path))
         print(f"serving {what} at {address}  (Ctrl-C stops)", flush=True)
         if guard.token:
             print(f"token: {guard.token}  (needed on every request: this address is not loopback-only)", flush=True)
