@@ -108,6 +108,8 @@ class TreeControl:
             raise ControlError("nothing to continue: the tree was not stopped")
         root = self.spec.root
         rest = [c for c in root.children if c.path not in self._finished_steps] if root.kind == "sequence" else None
+        if rest == []:
+            raise ControlError("nothing left to continue: every step of the tree succeeded")
         spec = self.spec if rest is None else replace(self.spec, root=replace(root, children=rest))
         self._submit(Job(spec, "continue", main=True))
 
