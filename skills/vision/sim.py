@@ -17,7 +17,7 @@ import math
 from typing import Any
 
 from stuart_bt.clock import Clock
-from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
+from stuart_bt.daemon.backend import Activity, DaemonError, Delivered, Done, Progress
 from stuart_bt.perception.memory import MemoryConfig, SpatialMemory
 from stuart_bt.perception.pipeline import Located, Perception
 from stuart_bt.perception.projection import CameraMount
@@ -27,7 +27,6 @@ from stuart_bt.perception.frames import CameraError
 from stuart_bt.sim.world.client import WorldClient, WorldError
 from stuart_bt.world import Pose
 
-from .activities import Instant
 from .backend import VisionBackend
 
 MEMORY_KEYS = ("match_radius", "smoothing", "decay_after", "decay_rate", "drop_below")
@@ -48,7 +47,8 @@ class SimVision(VisionBackend):
         self.sightings = int(options.get("sightings", 3))
         self.max_frames = int(options.get("max_frames", 12))
         self.spatial = SpatialMemory(clock, MemoryConfig(**{k: float(options[k]) for k in MEMORY_KEYS if k in options}))
-        self.perception = Perception(SimDetector(float(options.get("threshold", 0.75))), CameraMount.sim(), self.spatial)
+        detector = SimDetector(float(options.get("threshold", 0.75)))
+        self.perception = Perception(detector, CameraMount.sim(), self.spatial)
         self.frames = 0
         self.last: list[dict[str, Any]] = []
         self._warm_up()
@@ -81,7 +81,7 @@ class SimVision(VisionBackend):
             side = next((s for s, v in state.get("held", {}).items() if v == label), None)
             if side is not None:
                 x, y, z = state["hand_points"][side]
-                return Instant(0.0, {"object": label, "position": {"x": x, "y": y, "z": z}, "distance": 0.0,
+                return Delivered(0.0, {"object": label, "position": {"x": x, "y": y, "z": z}, "distance": 0.0,
                                      "in_hand": True, "detections": [], "memory": self.memory()})
         return Search(self, label)
 
