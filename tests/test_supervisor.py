@@ -1,4 +1,4 @@
-"""The supervisor: four dry daemons up, crashes and hangs noticed, restarts, clean shutdown."""
+"""The supervisor: five dry daemons up, crashes and hangs noticed, restarts, clean shutdown."""
 
 from __future__ import annotations
 
@@ -98,11 +98,11 @@ def states(recorder: EventRecorder, family: str) -> list[str]:
     return [e.data["state"] for e in recorder.of_kind("daemon_state") if e.data["family"] == family]
 
 
-def test_start_brings_up_the_four_dry_daemons(make, recorder):
+def test_start_brings_up_the_five_dry_daemons(make, recorder):
     before = children_of(os.getpid())
     sup = make()
     sup.start()
-    assert {f: sup.phase(f) for f in sup.families} == {f: "ready" for f in ("loco", "tts", "gesture", "pick")}
+    assert {f: sup.phase(f) for f in sup.families} == {f: "ready" for f in ("loco", "tts", "gesture", "pick", "vision")}
     assert sorted(our_new_children(before)) == sorted(sup.pid(f) for f in sup.families)
     for family in sup.families:
         assert states(recorder, family) == ["starting", "ready"]
@@ -199,7 +199,7 @@ def test_stop_all_stops_a_running_walk_where_it_is(make):
     walk = loco.request("navigate", {"pose": {"x": 10.0, "y": 0.0, "yaw": None}})
     poll_at_20hz(sup, lambda: walk.progress is not None)
     stops = sup.stop_all()
-    assert sorted(s.family for s in stops) == ["gesture", "loco", "pick", "tts"]
+    assert sorted(s.family for s in stops) == ["gesture", "loco", "pick", "tts", "vision"]
     for stop in stops:
         assert sup.wait(stop, timeout=2.0).ok
     assert walk.error_code == "stopped"
