@@ -30,6 +30,6 @@ def seen_objects(world: WorldState, now: float, recent: float = RECENT) -> list[
         if near:
             gap, marker = min(near, key=lambda pair: pair[0])
             if gap <= NEAR_MARKER:
-                entry["where"] = f"near the {marker.label}"
+                entry["where"] = f"near the {marker.name.replace('_', ' ')}"
         out.append(entry)
     return sorted(out, key=lambda e: e["distance"])
