@@ -194,6 +194,21 @@ def test_conversation_gets_a_canned_reply_and_nothing_moves():
     assert not trace.motions() and not mx.missions
 
 
+def test_a_question_asked_during_a_walk_is_answered_during_the_walk():
+    with robot() as (mx, trace):
+        trace.when(navigating(), lambda: mx.submit("Hey Stuart, what can you do?"))  # asked as the walk starts
+        mx.submit("Hey Stuart, go to the bathroom")
+        assert mx.wait_idle(30)
+
+    reply = next(e for e in trace.events if e.kind == "reply")
+    said = [e for e in trace.commands("tts") if e.data["cmd"] == "say"]
+    assert [e.data["args"]["text"] for e in said] == ["Navigating to the bathroom", reply.data["text"]]
+    walk_done = next(i for i, e in enumerate(trace.events)
+                     if e.kind == "leaf" and e.data["skill"] == "navigate" and e.data["outcome"] == "SUCCESS")
+    assert trace.events.index(said[1]) < walk_done, "the reply waited for the walk to end"
+    assert said[1].path == "reply" and mx.missions[0].status == "succeeded"
+
+
 def test_without_the_wake_phrase_nothing_happens_unless_wake_is_not_required():
     with robot() as (mx, trace):
         mx.submit("go to the kitchen")

@@ -242,6 +242,21 @@ def test_an_object_no_arm_can_reach_from_any_side_is_said_and_nothing_moves():
     assert not trace.commands("pick", "pick"), "an arm moved"
 
 
+def test_go_to_an_object_ends_facing_it_within_arm_reach():
+    with robot() as (mx, trace):
+        mx.submit("Hey Stuart, go to the cup")
+        assert mx.wait_idle(WALL_LIMIT)
+        final = state(mx)
+
+    assert mx.missions[0].status == "succeeded", mx.missions[0].reason
+    assert trace.said() == ["Going to the cup"]
+    base, cup = final["base"], final["objects"]["cup"]
+    dx, dy, yaw = cup["x"] - base["x"], cup["y"] - base["y"], base["yaw"]
+    ahead, left = dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw)
+    assert 0.2 < ahead < 0.45 and abs(left) < 0.15, f"the cup is at ({ahead:.2f}, {left:.2f}) in the body frame"
+    assert not final["collided"]
+
+
 def test_an_unknown_place_is_said_and_the_base_does_not_move():
     with robot() as (mx, trace):
         before = state(mx)

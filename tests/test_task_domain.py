@@ -168,6 +168,15 @@ def test_bring_returns_to_where_the_command_was_given() -> None:
     assert steps(plan("bring(cup)", lab(speaker_at=spot)))[3] == "navigate x=2.00 y=1.00 yaw=0.50"
 
 
+def test_going_to_an_object_walks_up_to_it_looking_for_it_first_when_unknown() -> None:
+    known = plan("navigate_to_marker(bottle)")
+    assert known.tasks[0].method == "to_object"
+    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=-0.10"]
+    unknown = plan("navigate_to_marker(orange)")
+    assert [s.skill for s in unknown.primitives()][:2] == ["speak", "find"] and unknown.primitives()[-1].skill == "approach"
+    assert plan("navigate_to_marker(kitchen)").tasks[0].method == "walk"  # a marker is walked to, not approached
+
+
 def test_find_remembered_objects_directly_and_unknown_ones_by_looking_around() -> None:
     assert plan("find(bottle)").tasks[0].method == "remembered"
     p = plan("find(orange)")
@@ -233,9 +242,9 @@ def test_a_later_intent_that_cannot_follow_an_earlier_one_is_explained() -> None
 
 # -- impossible requests ---------------------------------------------------------------------------------
 def test_an_unknown_place_fails_with_a_suggestion() -> None:
-    assert failure_of("navigate_to_marker(kitchn)").splitlines()[-1] == (
+    assert (
         "    ✗ walk: place in markers is false (place='kitchn', markers={entrance, charging_dock, kitchen, bathroom, "
-        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)")
+        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)") in failure_of("navigate_to_marker(kitchn)").splitlines()
     assert "✗ known_location: place in markers is false (place='moon'" in failure_of("fetch(bottle, moon)")
     assert "visit(moon): no method applies" in failure_of("tour([station_1, moon])")
 
