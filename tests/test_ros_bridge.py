@@ -122,7 +122,7 @@ def test_a_signal_during_a_mission_stops_the_tree_and_the_daemons_and_leaves_no_
             halted = client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"kind":"halt"' in m["data"], 10)
 
     assert code == 0
-    assert len(children) == 4  # one daemon per skill family
+    assert len(children) == 5  # one daemon per skill family: loco, tts, gesture, pick, vision
     assert not [c for c in children if alive(c)]
     assert halted is not None  # the tree was halted, and the node still said so
     assert bridge.out.lines[-1] == "ros bridge: stopped; every daemon stopped"

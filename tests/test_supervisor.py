@@ -188,7 +188,8 @@ def test_a_daemon_that_never_sends_ready_fails_the_start_with_its_stderr(make):
 def test_an_unknown_backend_fails_the_start_naming_the_valid_ones(make):
     sup = make(backend="unitre", families=("pick",))
     with pytest.raises(DaemonStartError, match=r"^pick daemon failed to start: exited with code 2 before READY "
-                                               r"\(stderr: .*unknown backend 'unitre'; valid backends: (\w+, )*dry(, \w+)*\)$"):
+                                               r"\(stderr: .*unknown backend 'unitre'( \(did you mean 'unitree'\?\))?; "
+                                               r"valid backends: (\w+, )*dry(, \w+)*\)$"):
         sup.start()
 
 
