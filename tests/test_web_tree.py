@@ -13,7 +13,7 @@ from web_support import REPO, Served, browser_tests, page, screenshot  # noqa: F
 browser_tests()
 pytest.importorskip("mujoco", reason="the tour runs in the simulator (the sim extra)")
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.timeout(300)]  # the simulator on a loaded machine
 WAIT = 90_000  # ms: a loaded two-core machine runs the world more slowly
 
 
