@@ -191,6 +191,37 @@ def test_a_subordinate_clause_is_never_an_ellipsis() -> None:
                                                                     ("gesture", "wave")]
 
 
+def test_where_to_look_is_where_to_go_unless_it_is_furniture() -> None:
+    assert shape("look for the book in the reading room") == [("navigate_to_marker", "reading room"),
+                                                              ("find", "book")]
+    assert shape("find the cup in the drawer") == [("find", "cup")]
+
+
+def test_waiting_somewhere_is_going_there_and_stopping_and_stopping_by_is_visiting() -> None:
+    assert shape("stand at the entrance") == [("navigate_to_marker", "entrance"), ("stop", "")]
+    assert shape("can you stop by the kitchen later?") == [("navigate_to_marker", "kitchen")]
+    assert shape("stop at the door") == [("stop", "")]  # said while moving: a stop, never a move
+    assert shape("stand in line") == []
+
+
+def test_time_words_end_a_target() -> None:
+    assert shape("go to the kitchen quick") == [("navigate_to_marker", "kitchen")]
+    assert shape("go to the kitchen later and pick up the cup") == [("navigate_to_marker", "kitchen"),
+                                                                    ("pick_up", "cup")]
+
+
+def test_a_bare_fraction_in_a_turn_is_a_fraction_of_a_full_turn() -> None:
+    assert one("turn a quarter to the right").yaw == pytest.approx(-PI / 2)
+    assert one("turn three quarters to the left").yaw == pytest.approx(3 * PI / 2)
+    assert shape("turn half way round") == [("turn_around", "")]
+    assert one("turn right 45").yaw == pytest.approx(-PI / 4)  # a bare whole number is degrees
+
+
+def test_a_number_is_no_object_and_take_five_is_a_break() -> None:
+    assert shape("take five") == [] and shape("pick up 3") == []
+    assert shape("hand over the screwdriver") == [("pick_up", "screwdriver")]
+
+
 def test_but_first_puts_the_second_clause_first() -> None:
     assert shape("go to the kitchen but first turn around") == [("turn_around", ""), ("navigate_to_marker", "kitchen")]
 

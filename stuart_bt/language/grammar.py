@@ -92,12 +92,13 @@ NP_BLOCK = frozenset({"sleep", "bed", "hell", "heaven", "pieces", "waste", "war"
                       "lead", "lesson", "chill pill", "joke", "pill", "hike", "stroll", "spin"})
 NP_STOP = BOUNDARY | frozenset({
     "to", "from", "on", "in", "at", "into", "onto", "inside", "near", "next", "by", "with", "for", "off", "of",
-    "please", "now", "quickly", "slowly", "carefully", "immediately", "again", "too", "first", "thanks", "thank",
-    "up", "down", "over", "there", "here", "behind", "under", "beside", "between", "below", "above", "around",
+    "please", "now", "quickly", "quick", "slowly", "carefully", "immediately", "again", "too", "first", "thanks",
+    "thank", "up", "down", "over", "there", "here", "behind", "under", "beside", "between", "below", "above", "around",
     "across", "along", "towards", "toward", "through", "until", "till", "unless", "if", "while", "so",
     "because", "as", "without", "asap", "ok", "gently", "instead", "also", "real", "fast", "safely",
     "straight", "right", "yourself", "which", "who", "where", "whose", "thats", "will", "would", "can",
     "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
+    "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -106,7 +107,7 @@ TRAILING = frozenset({"please", "now", "quickly", "slowly", "carefully", "immedi
                       "right", "away", "straight", "real", "quick", "for", "me", "us", "as", "well", "if", "can",
                       "could", "will", "would", "possible", "buddy", "mate", "pal", "robot", "friend", "then",
                       "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over", "shall",
-                      "we", "yeah", "alright"})
+                      "we", "yeah", "alright", "later", "soon", "today", "tonight", "tomorrow", "sometime"})
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
                 "which", "whose", "whom", "whatever", "wat"})
@@ -229,7 +230,8 @@ TURN_FILLER = frozenset({"by", "to", "the", "your", "my", "through", "about", "r
 AROUND = frozenset({"around", "round", "about", "aroud", "arround"})
 TO_WORDS = frozenset({"to", "towards", "toward", "into", "unto", "til", "till", "onto", "inside", "for"})
 HOME = frozenset({"home", "base"})
-CHOICES = frozenset({"number", "card", "one", "side", "colour", "color", "winner", "fight", "lock", "team", "name",
+CHOICES = frozenset({"number", "card", "one", "side", "colour", "color", "winner", "fight", "fights", "battle",
+                     "battles", "lock", "team", "name",
                      "song", "movie", "film", "game", "date", "time", "option", "answer", "favourite", "favorite",
                      "quarrel", "nose", "brain", "brains", "spot", "moment", "word", "letter", "something"})
 # what an object is taken "from" that is furniture, not a place to go ("the cup from the table")
@@ -549,6 +551,8 @@ def _object(s: _State, words: list[str]) -> str | None:
         return None  # "take it easy", "bring it on"
     if text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no"):
         return None
+    if all(word_value(w) is not None for w in words):
+        return None  # "take five": a number is no object
     return text
 
 
@@ -632,6 +636,9 @@ _NUMBER_STARTS = frozenset({
 })
 
 
+_FRACTION_STARTS = frozenset({"a", "an", "half", "quarter", "quarters", "one", "three", "two"})  # "three quarters"
+
+
 def _move(s: _State, i: int, verb: str, default_back: bool = False) -> Result:
     """move_relative from the direction/amount after a motion verb; ``None`` if neither was said
     or the amount is an angle."""
@@ -694,7 +701,14 @@ def _turn_terms(s: _State, i: int, verb: str) -> Result:
                 t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) and (q := read_quantity(toks, j)) is not None:
             if q.dimension == LENGTH:
                 return None
-            angle = q.value if q.dimension == ANGLE else math.radians(q.value)
+            if q.dimension == ANGLE:
+                angle = q.value
+            elif q.value < 1 and toks[j] in _FRACTION_STARTS:
+                angle = q.value * 2 * math.pi  # "turn a quarter to the right", "turn half way round"
+                if angle == math.pi and s.at(q.end) in ("way", "turn") and s.at(q.end + 1) in AROUND:
+                    return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], q.end + 2  # "half way round": around
+            else:
+                angle = math.radians(q.value)  # a bare number in a turn is degrees
             j = q.end
         elif t in TURN_FILLER and j + 1 < n and toks[j + 1] not in BOUNDARY:
             j += 1
@@ -841,6 +855,8 @@ def _pick(s: _State, i: int) -> Result:
         k = j
         if s.at(k) in OBJECT_PRONOUNS and s.at(k) not in ("them", "you", "yourself"):
             k += 1
+        elif s.at(k) == "over" and verb in ("hand", "pass"):
+            j = k = k + 1  # "hand over the screwdriver"
         k2 = k + 1 if s.at(k) in DETERMINERS else k
         g = s.phrase_at(k2, _GESTURE_BY_FIRST)
         if g is not None:
@@ -939,6 +955,13 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
         target = _object(s, words)
     if target is None:
         return None
+    if area is None and s.at(e) in ("in", "inside", "at") and s.at(e + 1) in ("the", "your", "my", "our", "station"):
+        where, e2 = _np(s, e + 1)  # "look for the book in the reading room": search there
+        area = _place(s, where)
+        if area is not None and where[-1] not in SURFACES:
+            e = e2
+        else:
+            area = None  # "look for the cup in the drawer": where it may be, not a place to go
     out: list[Spec] = []
     if area is not None:
         out.append((NAVIGATE, area, 0.0, 0.0, 0.0))
@@ -985,7 +1008,8 @@ def _stop(s: _State, i: int) -> Result:
     verb = toks[i]
     j = i + 1
     nxt = s.at(j)
-    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
+    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right", "at", "in",
+                                       "near", "beside", "inside"):
         return None
     if verb == "never" and nxt != "mind":
         return None
@@ -1009,12 +1033,16 @@ def _stop(s: _State, i: int) -> Result:
         return None
     if verb == "quit" and nxt not in ("it", "that", "moving", "move", "now", "", "please"):
         return None
-    if verb in ("wait", "stay") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(j + 1) in (
-            "the", "your", "my", "our", "station"):
-        words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay
+    if verb in ("wait", "stay", "stand", "stop") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
+            j + 1) in ("the", "your", "my", "our", "station") and (verb != "stop" or nxt == "by"):
+        words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay; "stop by the kitchen": visit
         place = _place(s, words)
         if place is not None and words[-1] not in SURFACES:
+            if verb == "stop":
+                return [(NAVIGATE, place, 0.0, 0.0, 0.0)], _skip_rest(s, e)
             return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], _skip_rest(s, e)
+    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
+        return None  # "stand in line"
     while j < n and toks[j] not in BOUNDARY:
         if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
             break
@@ -1199,6 +1227,8 @@ def _do(s: _State, i: int) -> Result:
                 break
             k0 += 1
         got = _turn_terms(s, k0, verb)
+        if got is not None and verb == "take" and not any(w in ROTATIONS or w in UNITS for w in toks[k0:got[1]]):
+            got = None  # "take five": a break; "take a left", "take a quarter turn" say how they turn
         if got is not None and (got[0][0][0] != TURN_AROUND or s.at(k0) in AROUND):
             return got
         if verb in ("do", "make") and s.at(k) == "spin":
