@@ -191,12 +191,6 @@ def test_a_subordinate_clause_is_never_an_ellipsis() -> None:
                                                                     ("gesture", "wave")]
 
 
-def test_where_to_look_is_where_to_go_unless_it_is_furniture() -> None:
-    assert shape("look for the book in the reading room") == [("navigate_to_marker", "reading room"),
-                                                              ("find", "book")]
-    assert shape("find the cup in the drawer") == [("find", "cup")]
-
-
 def test_waiting_somewhere_is_going_there_and_stopping_and_stopping_by_is_visiting() -> None:
     assert shape("stand at the entrance") == [("navigate_to_marker", "entrance"), ("stop", "")]
     assert shape("can you stop by the kitchen later?") == [("navigate_to_marker", "kitchen")]
@@ -220,6 +214,31 @@ def test_a_bare_fraction_in_a_turn_is_a_fraction_of_a_full_turn() -> None:
 def test_a_number_is_no_object_and_take_five_is_a_break() -> None:
     assert shape("take five") == [] and shape("pick up 3") == []
     assert shape("hand over the screwdriver") == [("pick_up", "screwdriver")]
+
+
+@pytest.mark.parametrize("text,want", [
+    ("go to the kitchen, no wait, the bathroom", [("navigate_to_marker", "bathroom")]),
+    ("go to the kitchen no the bathroom", [("navigate_to_marker", "bathroom")]),
+    ("pick up the cup, sorry, I mean the bottle", [("pick_up", "bottle")]),
+    ("go to station 2, make that station 3", [("navigate_to_marker", "station 3")]),
+    ("go to the kitchen, no, go to the bathroom and wave", [("navigate_to_marker", "bathroom"), ("gesture", "wave")]),
+    ("go to the kitchen. no. stop.", [("stop", "")]),
+    # a "no" that corrects nothing leaves the command as it was
+    ("go to the kitchen. no need to hurry", [("navigate_to_marker", "kitchen")]),
+    ("no, go to the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("go to the kitchen and sorry to bother you", [("navigate_to_marker", "kitchen")]),
+])
+def test_a_correction_replaces_the_clause_before_it(text: str, want: list[tuple[str, str]]) -> None:
+    assert shape(text) == want
+
+
+def test_a_corrected_amount() -> None:
+    assert [(i.action, i.yaw) for i in parse_command("turn left, no, right")] == [("turn_by_angle", -PI / 2)]
+    assert [i.x for i in parse_command("move forward one metre, make that two")] == [2.0]
+
+
+def test_instead_opens_a_command() -> None:
+    assert shape("instead go to the bathroom") == [("navigate_to_marker", "bathroom")]
 
 
 def test_but_first_puts_the_second_clause_first() -> None:

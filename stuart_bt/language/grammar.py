@@ -99,6 +99,7 @@ NP_STOP = BOUNDARY | frozenset({
     "straight", "right", "yourself", "which", "who", "where", "whose", "thats", "will", "would", "can",
     "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
     "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
+    "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -172,6 +173,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("see", "if", "you", "can"), ("see", "if", "you", "could"), ("check", "if", "you", "can"),
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
+    ("instead",), ("instead", "of", "that"), ("rather",),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _p in POLITE:
@@ -564,8 +566,8 @@ def _place(s: _State, words: list[str]) -> str | None:
     if text in ("there", "that place", "it", "that"):
         return s.last_place or s.topic or None
     if (text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here"
-            or _no_noun(words)):
-        return None
+            or _no_noun(words) or words[-1] in OBJECT_PRONOUNS):
+        return None  # ... and "(sorry) to bother you": a verb and its object, no place
     return text
 
 
@@ -955,13 +957,6 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
         target = _object(s, words)
     if target is None:
         return None
-    if area is None and s.at(e) in ("in", "inside", "at") and s.at(e + 1) in ("the", "your", "my", "our", "station"):
-        where, e2 = _np(s, e + 1)  # "look for the book in the reading room": search there
-        area = _place(s, where)
-        if area is not None and where[-1] not in SURFACES:
-            e = e2
-        else:
-            area = None  # "look for the cup in the drawer": where it may be, not a place to go
     out: list[Spec] = []
     if area is not None:
         out.append((NAVIGATE, area, 0.0, 0.0, 0.0))
@@ -1502,6 +1497,18 @@ def _topic(s: _State, i: int) -> bool:
     return True
 
 
+# what a speaker says before correcting the clause just said: "go to the kitchen, no, the
+# bathroom", "pick up the cup, sorry, I mean the bottle", "turn left, no wait, right"
+CORRECTIONS: tuple[tuple[str, ...], ...] = (
+    ("no",), ("no", "wait"), ("wait", "no"), ("sorry",), ("i", "mean"), ("i", "meant"), ("oops",),
+    ("or", "rather"), ("rather",), ("make", "that"), ("make", "it"), ("scratch", "that"), ("correction",),
+    ("my", "mistake"), ("my", "bad"), ("not", "that"), ("i", "said"),
+)
+_CORRECTION_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
+for _c in sorted(CORRECTIONS, key=lambda c: (-len(c), c)):
+    _CORRECTION_BY_FIRST[_c[0]] = _CORRECTION_BY_FIRST.get(_c[0], ()) + (_c,)
+
+
 def _connector(s: _State, i: int) -> tuple[str, int] | None:
     """A connector at ``i``: ("next", end), ("reorder", end) for "but first", ("or", end)."""
     t = s.toks[i]
@@ -1529,6 +1536,8 @@ def _skip_rest(s: _State, j: int) -> int:
         if t in CONDITIONS:
             condition = True
         elif not condition:
+            if t in _CORRECTION_BY_FIRST and s.phrase_at(j, _CORRECTION_BY_FIRST) is not None:
+                break  # "go to the kitchen no the bathroom"
             if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
@@ -1567,11 +1576,16 @@ class Grammar:
         i = 0
         dead = False  # the sentence opened as a question or statement
         reorder_at: int | None = None  # "X but first Y": Y's intents go before X's
+        correct_at: int | None = None  # "X, no, Y": Y's intents replace X's
         while i < n:
             t = toks[i]
             if t in HARD_STOPS:
                 dead = False
                 i += 1
+                continue
+            if out and not dead and t in _CORRECTION_BY_FIRST and (c := s.phrase_at(i, _CORRECTION_BY_FIRST)):
+                correct_at = len(out) - _last_clause_len(out)  # "go to the kitchen, no, the bathroom"
+                i += len(c)
                 continue
             con = _connector(s, i)
             if con is not None:
@@ -1612,6 +1626,7 @@ class Grammar:
                 got = _clause(s, i)
                 s.subordinate = False
             if got is None:
+                correct_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
                 if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
                     i = _skip_rest(s, i + 1)
                     s.first = False
@@ -1633,7 +1648,10 @@ class Grammar:
             a, b = tokens.span(start, min(j, n) - 1)
             raw = text[a:b]
             made = [TaskIntent(a, tg, x, y, yaw, raw) for a, tg, x, y, yaw in specs]
-            if reorder_at is not None:
+            if correct_at is not None:
+                out[correct_at:] = made
+                correct_at = None
+            elif reorder_at is not None:
                 out[reorder_at:reorder_at] = made
                 reorder_at = None
             else:
