@@ -213,6 +213,7 @@ def test_a_bare_fraction_in_a_turn_is_a_fraction_of_a_full_turn() -> None:
 
 def test_a_number_is_no_object_and_take_five_is_a_break() -> None:
     assert shape("take five") == [] and shape("pick up 3") == []
+    assert shape("take a short break") == [] and shape("take a deep breath") == []  # whatever the adjective
     assert shape("hand over the screwdriver") == [("pick_up", "screwdriver")]
 
 
@@ -239,6 +240,12 @@ def test_a_corrected_amount() -> None:
 
 def test_instead_opens_a_command() -> None:
     assert shape("instead go to the bathroom") == [("navigate_to_marker", "bathroom")]
+
+
+def test_a_step_with_an_adjective_is_still_a_step() -> None:
+    assert (one("take a small step to the left").x, one("take a small step to the left").y) == (0, 0.5)
+    assert one("take a big step back").x == -0.5
+    assert one("take a small step").x == 0.5
 
 
 def test_but_first_puts_the_second_clause_first() -> None:

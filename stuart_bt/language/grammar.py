@@ -634,7 +634,7 @@ _NUMBER_STARTS = frozenset({
     "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
     "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
     "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
-    "couple", "few", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
+    "couple", "few", "several", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
 })
 
 
@@ -871,8 +871,8 @@ def _pick(s: _State, i: int) -> Result:
         j += 1
     words, e = _np(s, j)
     target = _object(s, words)
-    if target is None:
-        return None
+    if target is None or (verb == "take" and words[-1] in NP_BLOCK):
+        return None  # "take a short break", "take a deep breath": idioms whatever the adjective
     if verb == "pick" and s.at(e) in ("up", "out"):
         e += 1
     if s.at(e) == "up" and verb in ("pick", "lift", "take", "scoop", "grab"):
@@ -1213,7 +1213,13 @@ def _do(s: _State, i: int) -> Result:
             return _way_to(s, k + (1 if t == "way" else 2))
         if verb in ("take", "make", "do") and (t in ("step", "steps") or s.at(k + 1) in ("step", "steps") or s.at(
                 k + 2) in ("step", "steps")):
-            return _move(s, j, "step")
+            got = _move(s, j, "step")
+            at = next(m for m in range(k, k + 3) if toks[m] in ("step", "steps"))
+            if got is None and toks[at] == "step":  # "take a small step to the left": one step that way
+                got = _move(s, at + 1, "step")
+                if got is None and _done(s, at + 1):  # "take a small step": forward, like "take a step"
+                    got = [(MOVE, "", s.defaults.step_m, 0.0, 0.0)], at + 1
+            return got
         # "make a quarter turn to the left", "do a full turn", "do a 360"
         k0 = j
         while k0 < n and toks[k0] in ("a", "an", "the"):
