@@ -27,7 +27,7 @@ from typing import Any, Mapping
 
 from stuart_bt.clock import clock_from_spec
 from stuart_bt.daemon import protocol as p
-from stuart_bt.daemon.backend import Activity, Backend, DaemonError, Done, Progress
+from stuart_bt.daemon.backend import Activity, Backend, DaemonError, Done, Progress, StartupError
 from stuart_bt.suggest import did_you_mean
 
 POLL_PERIOD = 0.01  # wall seconds between polls of activities that give no next_due()
@@ -54,6 +54,9 @@ def main(family: str, backends: Mapping[str, str], argv: list[str] | None = None
         return 2
     try:
         backend = backend_cls(clock, backend_options)
+    except StartupError as e:  # the operator's to fix: the reason alone, no traceback
+        print(f"{family} daemon: {options.backend} backend failed to start: {e}", file=sys.stderr)
+        return 1
     except Exception as e:  # any backend start-up failure ends the process before READY
         traceback.print_exc()
         print(f"{family} daemon: {options.backend} backend failed to start: {e}", file=sys.stderr)

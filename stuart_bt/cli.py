@@ -88,6 +88,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         report=Path(args.report) if args.report else None, log=Path(args.log) if args.log else None,
         max_duration=args.max_duration, seed=args.seed, viewer=args.viewer,
         record=Path(args.record) if args.record else None, map_out=Path(args.map_out) if args.map_out else None,
+        daemon_options=_daemon_options(args.daemon_options),
     )
     session = Session(spec, options)
     view = make_view(args.view, spec, session.events)
@@ -145,6 +146,28 @@ def cmd_schema(args: argparse.Namespace) -> int:
 
 
 # -- plumbing ----------------------------------------------------------------------------------------
+def _daemon_options(file: str | None) -> dict[str, dict[str, Any]]:
+    """``--daemon-options FILE``: per-family daemon options (YAML is a superset of JSON)."""
+    if not file:
+        return {}
+    import yaml
+
+    from .catalogue import FAMILIES
+    from .suggest import did_you_mean
+
+    try:
+        data = yaml.safe_load(Path(file).read_text(encoding="utf-8")) or {}
+    except (OSError, yaml.YAMLError) as e:
+        raise UserError(f"--daemon-options {file}: {e}") from None
+    if not isinstance(data, dict) or not all(isinstance(v, dict) for v in data.values()):
+        raise UserError(f"--daemon-options {file}: expected {{family: {{option: value}}}}, got {data!r}")
+    for family in data:
+        if family not in FAMILIES:
+            raise UserError(f"--daemon-options {file}: unknown family {family!r}{did_you_mean(str(family), FAMILIES)}; "
+                            f"families: {', '.join(FAMILIES)}")
+    return data
+
+
 def _exit_quietly(signum: int, _frame: Any) -> None:
     sys.stdout.flush()
     os._exit(128 + signum)
@@ -170,6 +193,10 @@ VOICE_COMMANDS = {
     "plan": ("stuart_bt.htn.explain:add_plan_command", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
+    "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
+    "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
+    "map": ("stuart_bt.map_cli:add_map_command", "robot SLAM maps (unitree): start mapping, save, relocalise, close"),
+    "serve": ("stuart_bt.web.cli:add_serve_command", "the live web view: tree, mission console, map, gestures"),
 }
 
 
@@ -215,6 +242,8 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
                    help="live: redrawn tree (default on a terminal); log: one line per event; none")
     p.add_argument("--max-duration", type=float, metavar="S", help="halt the run after S clock seconds")
     p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
+    p.add_argument("--daemon-options", metavar="FILE",
+                   help="JSON or YAML: {family: {option: value}} for the daemons (docs/robot.md)")
     p.set_defaults(func=cmd_run)
 
     p = sub.add_parser("bench", help="run the benchmarks; writes bench/results.json and prints a table")

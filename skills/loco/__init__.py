@@ -7,4 +7,5 @@ dry daemon never loads a simulator or a vendor SDK.
 BACKENDS: dict[str, str] = {
     "dry": "stuart_bt.skills.loco.dry:DryLoco",
     "sim": "stuart_bt.skills.loco.sim:SimLoco",
+    "unitree": "stuart_bt.skills.loco.unitree:UnitreeLoco",
 }

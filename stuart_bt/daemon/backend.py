@@ -30,6 +30,11 @@ class DaemonError(Exception):
         self.data = data
 
 
+class StartupError(Exception):
+    """A backend cannot start for a reason the operator can fix (the robot's service does not
+    answer, a wrong network interface): the daemon prints this one message, no traceback."""
+
+
 @dataclass(frozen=True)
 class Progress:
     """An activity has news but is not finished."""

@@ -1,0 +1,91 @@
+"""The unitree pick backend against the fake robot's rt/arm_sdk and Dex3 topics: the confirmation
+gate, IK-planned targets within the limits, the hand closing, the release blending back out."""
+
+from __future__ import annotations
+
+import pytest
+
+from stuart_bt.clock import ScaledClock
+from stuart_bt.daemon.supervisor import Supervisor
+from stuart_bt.events import EventStream
+from stuart_bt.sim.robot import description as desc
+from unitree_fake import FakeRobot
+
+pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
+pytest.importorskip("pinocchio", reason="the pick planner needs the 'ik' extra")
+
+OBJECTS = {"bottle": {"x": 0.3, "y": -0.2, "z": 0.95}, "far_cup": {"x": 2.0, "y": 0.0, "z": 0.9}}
+HERE = {"x": 0.0, "y": 0.0, "yaw": 0.0}
+RIGHT_ARM_MOTORS = range(22, 29)
+
+
+@pytest.fixture(scope="module")
+def robot():
+    with FakeRobot() as fake:
+        yield fake
+
+
+@pytest.fixture
+def pick(robot, tmp_path):
+    clock = ScaledClock(1.0)
+    sup = Supervisor("unitree", clock, EventStream(clock), families=("pick",),
+                     options={"pick": robot.options(objects=OBJECTS, ramp=0.2)}, run_dir=tmp_path,
+                     handshake_timeout=30.0)
+    sup.start()
+    yield sup
+    sup.shutdown()
+
+
+def request(sup: Supervisor, cmd: str, **args):
+    return sup.client("pick").request(cmd, args)
+
+
+def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_the_hand(robot, pick):
+    before_arm, before_hand = len(robot.topic("rt/arm_sdk")), len(robot.topic("rt/dex3/right/cmd"))
+    grasp = request(pick, "pick", object="bottle", robot_pose=HERE)
+    pick.wait(request(pick, "state"), timeout=5)
+    assert grasp.accepted_data["awaiting_confirm"] is True
+    assert grasp.accepted_data["planned"]["arm"] == "right"
+    assert len(robot.topic("rt/arm_sdk")) == before_arm  # nothing moves before the confirmation
+    assert pick.wait(request(pick, "confirm"), timeout=5).ok
+    assert pick.wait(grasp, timeout=20).ok, grasp.reason
+    assert grasp.result["object"] == "bottle" and grasp.result["arm"] == "right"
+    samples = robot.topic("rt/arm_sdk")[before_arm:]
+    assert all(s["crc_ok"] for s in samples)
+    assert samples[0]["weight"] < 0.1 and samples[-1]["weight"] == 1.0  # blended in, holding
+    limits = desc.arm_limits("right")
+    for motor, joint in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")):
+        low, high = limits[joint]
+        assert all(low - 1e-4 <= s["q"][str(motor)] <= high + 1e-4 for s in samples), joint
+    planned = grasp.accepted_data["planned"]["joints"]
+    lifted = samples[-1]["q"]
+    assert any(abs(lifted[str(m)] - desc.NEUTRAL[j]) > 0.1 for m, j in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")))
+    assert set(planned) == set(desc.arm_joints("right"))
+    hands = robot.topic("rt/dex3/right/cmd")[before_hand:]
+    assert max(abs(q) for q in hands[0]["q"]) == 0.0 and max(abs(q) for q in hands[-1]["q"]) > 0.3  # open, then closed
+
+    before_arm = len(robot.topic("rt/arm_sdk"))
+    put = request(pick, "release", robot_pose=HERE)
+    assert pick.wait(put, timeout=20).ok, put.reason
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    samples = robot.topic("rt/arm_sdk")[before_arm:]
+    assert samples[0]["weight"] == 1.0 and samples[-1]["weight"] == 0.0
+    assert put.result["position"]["z"] == pytest.approx(0.95, abs=0.01)
+
+
+def test_an_object_out_of_reach_is_refused_before_anything_moves(robot, pick):
+    before = len(robot.topic("rt/arm_sdk"))
+    result = pick.wait(request(pick, "pick", object="far_cup", robot_pose=HERE), timeout=10)
+    assert result.error_code == "unreachable"
+    assert "beyond the left arm's reach" in result.reason or "beyond the right arm's reach" in result.reason
+    assert len(robot.topic("rt/arm_sdk")) == before
+
+
+def test_stopping_a_pick_blends_the_arm_back_to_the_controller(robot, pick):
+    grasp = request(pick, "pick", object="bottle", robot_pose=HERE)
+    pick.wait(request(pick, "confirm"), timeout=5)
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] > 0.5, what="the arm blended in")
+    assert pick.wait(request(pick, "stop"), timeout=5).ok
+    assert grasp.error_code == "stopped"
+    last = robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    assert last["crc_ok"]

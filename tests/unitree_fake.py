@@ -1,0 +1,109 @@
+"""The test side of the fake G1 (tests/fakes/unitree_services.py): start it on a private DDS
+domain on loopback, read what it recorded, script its faults.
+
+Nothing here imports the vendor SDK: the fake runs in its own process, like the robot would.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+import pytest
+
+FAKE = Path(__file__).parent / "fakes" / "unitree_services.py"
+_domains = itertools.count((os.getpid() * 7) % 60)
+
+
+def private_domain() -> int:
+    """A DDS domain id no other test (or helper's test run) is likely to use at the same time."""
+    return 160 + next(_domains) % 60
+
+
+class FakeRobot:
+    """A running fake robot; ``records`` grows as the fake reports requests and samples."""
+
+    def __init__(self, domain: int | None = None, nav_speed: float = 4.0, silent: str = "") -> None:
+        pytest.importorskip("unitree_sdk2py", reason="the unitree backend needs the 'robot' extra")
+        self.domain = private_domain() if domain is None else domain
+        self.records: list[dict[str, Any]] = []
+        self._lock = threading.Lock()
+        self.proc = subprocess.Popen(
+            [sys.executable, str(FAKE), "--domain", str(self.domain), "--nav-speed", str(nav_speed),
+             "--silent", silent],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        threading.Thread(target=self._read, daemon=True).start()
+        self.wait_for(lambda r: r["kind"] == "ready", timeout=30, what="the fake robot to start")
+
+    @property
+    def env(self) -> dict[str, str]:
+        """Environment for a daemon or CLI process that should talk to this fake."""
+        return {**os.environ, "STUART_UNITREE_INTERFACE": "lo", "STUART_UNITREE_DOMAIN": str(self.domain)}
+
+    def options(self, **extra: Any) -> dict[str, Any]:
+        return {"interface": "lo", "domain": self.domain, **extra}
+
+    def _read(self) -> None:
+        assert self.proc.stdout is not None
+        for line in self.proc.stdout:
+            record = json.loads(line)
+            with self._lock:
+                self.records.append(record)
+
+    def rpc(self, service: str | None = None, api: int | None = None) -> list[dict[str, Any]]:
+        with self._lock:
+            return [r for r in self.records if r["kind"] == "rpc" and service in (None, r["service"])
+                    and api in (None, r["api"])]
+
+    def topic(self, name: str) -> list[dict[str, Any]]:
+        with self._lock:
+            return [r for r in self.records if r["kind"] == "topic" and r["topic"] == name]
+
+    def order(self, **order: Any) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write((json.dumps(order) + "\n").encode())
+        self.proc.stdin.flush()
+
+    def fault(self, service: str, api: int, code: int | None = None, times: int = 1) -> None:
+        """The next ``times`` calls of ``api`` answer ``code`` (None: no answer at all)."""
+        spec: dict[str, Any] = {"service": service, "api": api, "times": times}
+        spec.update({"silent": True} if code is None else {"code": code})
+        self.order(fault=spec)
+
+    def wait_for(self, predicate: Callable[[dict[str, Any]], bool], timeout: float = 10.0,
+                 what: str = "a record") -> dict[str, Any]:
+        deadline = time.monotonic() + timeout
+        seen = 0
+        while time.monotonic() < deadline:
+            with self._lock:
+                fresh = self.records[seen:]
+                seen = len(self.records)
+            for record in fresh:
+                if predicate(record):
+                    return record
+            if self.proc.poll() is not None:
+                break
+            time.sleep(0.02)
+        raise AssertionError(f"timed out waiting for {what}; last records: {self.records[-5:]}")
+
+    def close(self) -> None:
+        if self.proc.stdin:
+            self.proc.stdin.close()
+        try:
+            self.proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+
+    def __enter__(self) -> "FakeRobot":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
