@@ -248,6 +248,54 @@ def test_a_step_with_an_adjective_is_still_a_step() -> None:
     assert one("take a small step").x == 0.5
 
 
+@pytest.mark.parametrize("text,want", [
+    ("go to the kitchen after you wave", [("gesture", "wave"), ("navigate_to_marker", "kitchen")]),
+    ("go to the kitchen after picking up the cup", [("pick_up", "cup"), ("navigate_to_marker", "kitchen")]),
+    ("before going to the kitchen, turn around", [("turn_around", ""), ("navigate_to_marker", "kitchen")]),
+    ("before you go to the kitchen, wave", [("gesture", "wave"), ("navigate_to_marker", "kitchen")]),
+    ("go to the kitchen before you wave", [("navigate_to_marker", "kitchen"), ("gesture", "wave")]),
+    # after a connector, "after you X" starts the next step as before
+    ("go to the kitchen and after you wave pick up the cup", [("navigate_to_marker", "kitchen"), ("gesture", "wave"),
+                                                              ("pick_up", "cup")]),
+])
+def test_before_and_after_put_the_steps_in_the_order_to_do_them(text: str, want: list[tuple[str, str]]) -> None:
+    assert shape(text) == want
+
+
+@pytest.mark.parametrize("text", ["visit stations 1 to 3", "go to station one, two and three",
+                                  "go to station 1 then 2 then 3", "visit stations one through three"])
+def test_numbered_places_in_a_list_or_a_range_are_one_visit_each(text: str) -> None:
+    got = [i.target for i in parse_command(text)]
+    assert len(got) == 3 and all(t.startswith("station ") for t in got)
+    assert [t.split()[1] for t in got] in (["1", "2", "3"], ["one", "two", "three"])
+
+
+def test_objects_in_a_list_share_a_source_or_destination() -> None:
+    assert shape("fetch the cup and the bottle from the kitchen") == [
+        ("navigate_to_marker", "kitchen"), ("pick_up", "cup"), ("pick_up", "bottle")]
+    assert shape("bring the cup and the book to the reading room") == [
+        ("pick_up", "cup"), ("pick_up", "book"), ("navigate_to_marker", "reading room")]
+
+
+@pytest.mark.parametrize("text,want", [
+    ("swing by the workbench", [("navigate_to_marker", "workbench")]),
+    ("could you pop over to the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("nip to the bathroom", [("navigate_to_marker", "bathroom")]),
+    ("come with me to the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("could you escort our guest to the entrance", [("navigate_to_marker", "entrance")]),
+    ("off you go to the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("hunt down the apple", [("find", "apple")]),
+    ("pick up whatever is on the table", []),  # a clause, not an object
+])
+def test_more_ways_to_say_it(text: str, want: list[tuple[str, str]]) -> None:
+    assert shape(text) == want
+
+
+def test_going_for_a_distance_is_a_move() -> None:
+    assert one("go straight for two meters").x == 2.0
+    assert shape("head for the kitchen") == [("navigate_to_marker", "kitchen")]
+
+
 def test_but_first_puts_the_second_clause_first() -> None:
     assert shape("go to the kitchen but first turn around") == [("turn_around", ""), ("navigate_to_marker", "kitchen")]
 

@@ -100,6 +100,7 @@ NP_STOP = BOUNDARY | frozenset({
     "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
     "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
     "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
+    "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -173,7 +174,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("see", "if", "you", "can"), ("see", "if", "you", "could"), ("check", "if", "you", "can"),
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
-    ("instead",), ("instead", "of", "that"), ("rather",),
+    ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _p in POLITE:
@@ -282,7 +283,7 @@ MOTION_VERBS = frozenset({"go", "move", "walk", "head", "drive", "travel", "proc
                           "sidestep", "wander", "stroll", "march", "visit", "approach", "reach", "enter", "step",
                           "back", "get", "retreat", "creep", "shuffle", "inch", "hop", "make", "scurry", "dash",
                           "sprint", "zoom", "trot", "amble", "journey", "relocate", "continue", "goto", "gp", "nudge", "edge",
-                          "budge", "crawl", "glide", "push", "ease", "wheel"})
+                          "budge", "crawl", "glide", "push", "ease", "wheel", "pop", "nip"})
 TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "face", "revolve", "veer", "swing"})
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
                         "carry", "get", "hand", "pass", "give", "snatch", "obtain", "gather", "seize", "acquire",
@@ -559,9 +560,13 @@ def _object(s: _State, words: list[str]) -> str | None:
 
 
 def _place(s: _State, words: list[str]) -> str | None:
-    """The spoken place of a navigation, with "there" meaning the last place named."""
+    """The spoken place of a navigation, with "there" meaning the last place named; a plural
+    before a number is singular ("stations one, two and three": "station one", ...)."""
     if not words:
         return None
+    if len(words) >= 2 and words[-2].endswith("s") and not words[-2].endswith("ss") and word_value(
+            words[-1]) is not None:
+        words = [*words[:-2], words[-2][:-1], words[-1]]
     text = " ".join(words)
     if text in ("there", "that place", "it", "that"):
         return s.last_place or s.topic or None
@@ -569,6 +574,25 @@ def _place(s: _State, words: list[str]) -> str | None:
             or _no_noun(words) or words[-1] in OBJECT_PRONOUNS):
         return None  # ... and "(sorry) to bother you": a verb and its object, no place
     return text
+
+
+def _numbered(place: str) -> tuple[str, float] | None:
+    """ "station three" -> ("station", 3.0): a place named by a number, or ``None``."""
+    head, _, last = place.rpartition(" ")
+    value = word_value(last) if head else None
+    return (head, value) if value is not None else None
+
+
+def _go(s: _State, target: str | None, e: int) -> Result:
+    """navigate_to_marker ``target`` (ending at ``e``); a numbered range is one per number:
+    "visit stations 1 to 3", "station one through three" -> station 1, station 2, station 3."""
+    if target is None:
+        return None
+    num = _numbered(target) if s.at(e) in ("to", "through", "thru") else None
+    last = word_value(s.at(e + 1)) if num else None
+    if num and last is not None and num[1] == int(num[1]) and last == int(last) and num[1] < last <= num[1] + 10:
+        return [(NAVIGATE, f"{num[0]} {k}", 0.0, 0.0, 0.0) for k in range(int(num[1]), int(last) + 1)], e + 2
+    return [(NAVIGATE, target, 0.0, 0.0, 0.0)], e
 
 
 # -- movement and turning ----------------------------------------------------------------------------
@@ -747,6 +771,8 @@ def _motion(s: _State, i: int) -> Result:
         j += 1
     if s.at(j) in ("me", "us", "them", "him", "her") and s.at(j + 1) in TO_WORDS:
         j += 1  # "walk me to the kitchen"
+    elif s.at(j) == "with" and s.at(j + 1) in ("me", "us", "them", "him", "her") and s.at(j + 2) in TO_WORDS:
+        j += 2  # "come with me to the kitchen": company, not a place
     t = s.at(j)
     if verb == "back" and t in ("up", "off", "away", "out"):
         j += 1
@@ -769,6 +795,8 @@ def _motion(s: _State, i: int) -> Result:
         return _do(s, i)
     if verb == "get" and t not in TO_WORDS and t not in HOME and t != "back":
         return _pick(s, i)
+    if t == "for" and (q := read_quantity(s.toks, j + 1)) is not None and q.dimension == LENGTH:
+        return _move(s, j, verb)  # "go straight for two metres": how far, not where
     if t in TO_WORDS and t != "for" or (t == "for" and verb in ("head", "make", "go")):
         k = j + 1
         k2 = k
@@ -780,10 +808,7 @@ def _motion(s: _State, i: int) -> Result:
         if k < n and toks[k] in ALL_VERBS and toks[k] not in ("back", "face", "stand", "hand", "end", "break"):
             return _clause(s, k)  # "go to find the cup"
         words, e = _np(s, k)
-        target = _place(s, words)
-        if target is None:
-            return None
-        return [(NAVIGATE, target, 0.0, 0.0, 0.0)], e
+        return _go(s, _place(s, words), e)
     if t in HOME:
         return [(NAVIGATE, t, 0.0, 0.0, 0.0)], j + 1
     if t == "there" and (s.last_place or s.topic) and verb not in ("move", "step", "back"):
@@ -792,8 +817,7 @@ def _motion(s: _State, i: int) -> Result:
         return None  # "come back", "come here": towards the speaker, whom the grammar cannot place
     if verb in ("visit", "approach", "reach", "enter", "navigate", "goto"):
         words, e = _np(s, j)
-        target = _place(s, words)
-        return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e) if target else None
+        return _go(s, _place(s, words), e)
     if t in ALL_VERBS and t not in DIRECTIONS and verb in ("go", "come", "run", "hurry", "rush") and t not in (
             "stand", "back"):
         return _clause(s, j)  # "go get the bottle", "come wave"
@@ -813,11 +837,14 @@ def _guide(s: _State, i: int) -> Result:
     j = i + 1
     while s.at(j) in OBJECT_PRONOUNS or s.at(j) in ("the", "way", "back", "over", "our", "visitors", "guests"):
         j += 1
+    if s.at(j) not in TO_WORDS:  # "escort our new guest to ...": whoever is guided, then where
+        _, j = _np(s, j)
+        while s.at(j) in ("the", "way", "back", "over"):
+            j += 1
     if s.at(j) not in TO_WORDS:
         return None
     words, e = _np(s, j + 1)
-    target = _place(s, words)
-    return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e) if target else None
+    return _go(s, _place(s, words), e)
 
 
 def _turn(s: _State, i: int) -> Result:
@@ -873,6 +900,11 @@ def _pick(s: _State, i: int) -> Result:
     target = _object(s, words)
     if target is None or (verb == "take" and words[-1] in NP_BLOCK):
         return None  # "take a short break", "take a deep breath": idioms whatever the adjective
+    targets = [target]
+    more, e_more = _shared_list(s, e)
+    if more:  # "fetch the cup and the bottle from the kitchen": the source is both objects'
+        targets += more
+        e = e_more
     if verb == "pick" and s.at(e) in ("up", "out"):
         e += 1
     if s.at(e) == "up" and verb in ("pick", "lift", "take", "scoop", "grab"):
@@ -895,7 +927,7 @@ def _pick(s: _State, i: int) -> Result:
             e = e2
             k = e2
     if not (words[0] in ("it", "them", "that", "this") and s.last_action == PICK and target == s.last_object):
-        out.append((PICK, target, 0.0, 0.0, 0.0))  # "grab the apple and bring it to ...": picked already
+        out += [(PICK, t, 0.0, 0.0, 0.0) for t in targets]  # "grab the apple and bring it to ...": picked already
     if s.at(k) in ("to", "into", "over", "towards", "toward") and verb in ("bring", "take", "carry", "deliver",
                                                                            "fetch", "get", "move"):
         k2 = k + 1 + (1 if s.at(k) == "over" and s.at(k + 1) == "to" else 0)
@@ -907,6 +939,29 @@ def _pick(s: _State, i: int) -> Result:
                 out.append((NAVIGATE, place, 0.0, 0.0, 0.0))
         e = e2
     return out, e
+
+
+def _shared_list(s: _State, e: int) -> tuple[list[str], int]:
+    """More objects after the first ("the cup and the bottle", "the cup, the book and the
+    apple") when a source or destination follows the last one, which then applies to all:
+    (the other objects, end). Without one the list is left to the ellipsis rule."""
+    more: list[str] = []
+    k = e
+    while s.at(k) in (",", "and"):
+        k += 1
+        if s.at(k) == "and":
+            k += 1
+        if s.at(k) not in DETERMINERS:
+            return [], e
+        words, k2 = _np(s, k)
+        obj = _object(s, words) if words else None
+        if obj is None:
+            return [], e
+        more.append(obj)
+        k = k2
+    if more and (s.at(k) == "from" or s.at(k) in ("to", "into") and s.at(k + 1) in DETERMINERS | {"station"}):
+        return more, k
+    return [], e
 
 
 def _find(s: _State, i: int, verb: str = "") -> Result:
@@ -932,7 +987,7 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
             if s.at(e) != "for":  # "search the kitchen": a place to search; "check the kitchen": vague
                 return ([(FIND, area, 0.0, 0.0, 0.0)], e) if verb != "check" else None
             j = e + 1
-        elif verb == "track" and s.at(j) == "down":
+        elif verb in ("track", "hunt") and s.at(j) == "down":
             j += 1
         elif verb in ("look", "hunt", "seek", "check"):
             return None
@@ -1028,13 +1083,11 @@ def _stop(s: _State, i: int) -> Result:
         return None
     if verb == "quit" and nxt not in ("it", "that", "moving", "move", "now", "", "please"):
         return None
-    if verb in ("wait", "stay", "stand", "stop") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
-            j + 1) in ("the", "your", "my", "our", "station") and (verb != "stop" or nxt == "by"):
-        words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay; "stop by the kitchen": visit
+    if verb in ("wait", "stay", "stand") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
+            j + 1) in ("the", "your", "my", "our", "station"):
+        words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay
         place = _place(s, words)
         if place is not None and words[-1] not in SURFACES:
-            if verb == "stop":
-                return [(NAVIGATE, place, 0.0, 0.0, 0.0)], _skip_rest(s, e)
             return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], _skip_rest(s, e)
     if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
         return None  # "stand in line"
@@ -1043,6 +1096,19 @@ def _stop(s: _State, i: int) -> Result:
             break
         j += 1
     return [(STOP, "", 0.0, 0.0, 0.0)], j
+
+
+VISIT_VERBS = frozenset({"stop", "swing", "drop", "come", "pop", "go", "pass", "nip", "call"})
+
+
+def _visit_by(s: _State, i: int) -> Result:
+    """ "stop by the kitchen", "swing by the workbench", "drop by station 3": a visit
+    (navigate_to_marker). Only with a place after "by": "stand by" and "stop by 5" are not."""
+    if s.at(i + 1) != "by" or s.at(i + 2) not in ("the", "your", "my", "our", "station"):
+        return None
+    words, e = _np(s, i + 2)
+    place = _place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], e) if place and words[-1] not in SURFACES else None
 
 
 def _skip_gesture_tail(s: _State, j: int) -> int:
@@ -1416,6 +1482,8 @@ def _clause(s: _State, i: int) -> Result:
     t = toks[i]
     if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY):
         return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
+    if t in VISIT_VERBS and (got := _visit_by(s, i)) is not None:
+        return got
     sp = s.phrase_at(i, _STOP_BY_FIRST) if t in _STOP_BY_FIRST else None
     if sp is not None and (len(sp) > 1 or t in ("stop", "halt", "freeze", "enough", "whoa", "woah")):
         if t in ("stop", "halt", "freeze"):
@@ -1466,6 +1534,8 @@ def _verbless(s: _State, i: int) -> Result:
             if target is not None and _done(s, j):
                 return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
             return None
+    if last == NAVIGATE and (num := _numbered(s.last_place)) and word_value(t) is not None and _done(s, i + 1):
+        return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
     if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in _NUMBER_STARTS or (
             t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
         if s.first or last in (MOVE, TURN, TURN_AROUND):
@@ -1583,6 +1653,9 @@ class Grammar:
         dead = False  # the sentence opened as a question or statement
         reorder_at: int | None = None  # "X but first Y": Y's intents go before X's
         correct_at: int | None = None  # "X, no, Y": Y's intents replace X's
+        clause_end = -1  # where the last clause ended: "X after you Y" has no connector between
+        hold = False  # "before you Y, X": Y's intents wait ...
+        held: list[TaskIntent] = []  # ... here until X's are in
         while i < n:
             t = toks[i]
             if t in HARD_STOPS:
@@ -1606,6 +1679,10 @@ class Grammar:
                 i += 1
                 continue
             subordinate = False
+            attached = bool(out) and i == clause_end
+            if t == "before" and i + 1 < n and (toks[i + 1] in ("you", "u") or toks[i + 1] in ALL_VERBS):
+                i += 2 if toks[i + 1] in ("you", "u") else 1
+                hold = not attached  # "before you go, wave": the wave first; "wave before you go": in order
             if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
                     "you", "youve", "youre", "u"):
                 i += 2
@@ -1618,6 +1695,8 @@ class Grammar:
                 perfect = toks[i + 1] == "youve" or t == "once"
                 i += 2 if toks[i + 1] in ("you", "youve", "youre", "u") else 1
                 subordinate = True
+                if t == "after" and attached:  # "go to the kitchen after you wave": the wave first
+                    reorder_at = len(out) - _last_clause_len(out)
                 if i < n and toks[i] == "have" and toks[i - 1] == "you":
                     i += 1  # "once you have picked up ..."
                     perfect = True
@@ -1632,7 +1711,8 @@ class Grammar:
                 got = _clause(s, i)
                 s.subordinate = False
             if got is None:
-                correct_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
+                correct_at = reorder_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
+                hold = False
                 if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
                     i = _skip_rest(s, i + 1)
                     s.first = False
@@ -1654,7 +1734,9 @@ class Grammar:
             a, b = tokens.span(start, min(j, n) - 1)
             raw = text[a:b]
             made = [TaskIntent(a, tg, x, y, yaw, raw) for a, tg, x, y, yaw in specs]
-            if correct_at is not None:
+            if hold:
+                held, hold = made, False
+            elif correct_at is not None:
                 out[correct_at:] = made
                 correct_at = None
             elif reorder_at is not None:
@@ -1662,6 +1744,9 @@ class Grammar:
                 reorder_at = None
             else:
                 out.extend(made)
+            if held and made is not held:
+                out.extend(held)
+                held = []
             for a, tg, *_ in specs:
                 if a in (PICK, FIND) and tg not in ("me", "it"):
                     s.last_object = tg
@@ -1669,8 +1754,8 @@ class Grammar:
                     s.last_place = tg
             s.last_action = specs[-1][0]
             s.first = False
-            i = _skip_rest(s, j)
-        return _dedupe_stops(out)
+            i = clause_end = _skip_rest(s, j)
+        return _dedupe_stops(out + held)
 
 
 def _arrival(s: _State, i: int) -> Result:
