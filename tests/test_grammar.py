@@ -242,6 +242,10 @@ def test_instead_opens_a_command() -> None:
     assert shape("instead go to the bathroom") == [("navigate_to_marker", "bathroom")]
 
 
+def test_paces_are_steps() -> None:
+    assert one("take two paces forward").x == 1.0
+
+
 def test_a_step_with_an_adjective_is_still_a_step() -> None:
     assert (one("take a small step to the left").x, one("take a small step to the left").y) == (0, 0.5)
     assert one("take a big step back").x == -0.5
@@ -341,6 +345,12 @@ def test_conversation_is_no_command(text: str) -> None:
 ])
 def test_the_speaker_asking_to_share_a_gesture_is_a_gesture(text: str, name: str) -> None:
     assert shape(text) == [("gesture", name)]
+
+
+@pytest.mark.parametrize("text", ["going to the kitchen was fun", "picking up cups is your job",
+                                  "stop me if you've heard this one", "pick up the pace"])
+def test_a_command_that_is_the_subject_of_a_sentence_or_an_idiom_is_none(text: str) -> None:
+    assert parse_command(text) == []
 
 
 def test_the_speaker_doing_something_alone_is_no_command() -> None:

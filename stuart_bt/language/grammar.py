@@ -88,7 +88,7 @@ NP_BLOCK = frozenset({"sleep", "bed", "hell", "heaven", "pieces", "waste", "war"
                       "break", "rest", "nap", "seat", "look", "photo", "picture", "photograph", "selfie", "shower",
                       "bath", "walk", "hand", "minute", "second", "moment", "sec", "chance", "call", "try", "guess",
                       "hint", "clue", "idea", "deep breath", "breath", "breather", "left", "right", "way",
-                      "step", "steps", "turn", "turns", "care", "part", "place", "note", "notice", "time",
+                      "step", "steps", "turn", "turns", "care", "part", "place", "note", "notice", "time", "pace",
                       "lead", "lesson", "chill pill", "joke", "pill", "hike", "stroll", "spin"})
 NP_STOP = BOUNDARY | frozenset({
     "to", "from", "on", "in", "at", "into", "onto", "inside", "near", "next", "by", "with", "for", "off", "of",
@@ -101,6 +101,7 @@ NP_STOP = BOUNDARY | frozenset({
     "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
     "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
     "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
+    "you",  # a new clause: "... the kitchen you need a map"
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -662,6 +663,7 @@ _NUMBER_STARTS = frozenset({
 })
 
 
+STEP_WORDS = frozenset(w for w, (dim, factor) in UNITS.items() if dim == LENGTH and factor == STEP_M)
 _FRACTION_STARTS = frozenset({"a", "an", "half", "quarter", "quarters", "one", "three", "two"})  # "three quarters"
 
 
@@ -1063,6 +1065,8 @@ def _stop(s: _State, i: int) -> Result:
         return None
     if verb == "never" and nxt != "mind":
         return None
+    if verb in ("stop", "halt") and nxt in ("me", "us", "him", "her", "them", "everyone", "everybody", "people"):
+        return None  # "stop me if you've heard this one": someone else is stopped
     if verb == "forget" and nxt not in ("it", "that", "about", "everything", "this"):
         return None
     if verb == "cut" and nxt not in ("it", "that", "out"):
@@ -1277,11 +1281,11 @@ def _do(s: _State, i: int) -> Result:
                 2 if s.at(k + 1) == "turn" else 1)
         if verb in ("make", "do") and (t == "way" or (t == "your" and s.at(k + 1) == "way")):
             return _way_to(s, k + (1 if t == "way" else 2))
-        if verb in ("take", "make", "do") and (t in ("step", "steps") or s.at(k + 1) in ("step", "steps") or s.at(
-                k + 2) in ("step", "steps")):
+        if verb in ("take", "make", "do") and (t in STEP_WORDS or s.at(k + 1) in STEP_WORDS or s.at(
+                k + 2) in STEP_WORDS):
             got = _move(s, j, "step")
-            at = next(m for m in range(k, k + 3) if toks[m] in ("step", "steps"))
-            if got is None and toks[at] == "step":  # "take a small step to the left": one step that way
+            at = next(m for m in range(k, k + 3) if toks[m] in STEP_WORDS)
+            if got is None and toks[at] in ("step", "pace"):  # "take a small step to the left": one step that way
                 got = _move(s, at + 1, "step")
                 if got is None and _done(s, at + 1):  # "take a small step": forward, like "take a step"
                     got = [(MOVE, "", s.defaults.step_m, 0.0, 0.0)], at + 1
@@ -1531,7 +1535,7 @@ def _verbless(s: _State, i: int) -> Result:
         if s.at(k) not in DIRECTIONS:
             words, j = _np(s, i + 1)
             target = _place(s, words)
-            if target is not None and _done(s, j):
+            if target is not None and _done(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
                 return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
             return None
     if last == NAVIGATE and (num := _numbered(s.last_place)) and word_value(t) is not None and _done(s, i + 1):
@@ -1726,6 +1730,12 @@ class Grammar:
                 continue
             specs, j = got
             j = max(j, i + 1)
+            if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
+                dead = True
+                correct_at = reorder_at = None
+                hold = False
+                i = j
+                continue
             if subordinate and out and [(it.action, it.target) for it in out[-len(specs):]] == [
                     (a, tg) for a, tg, *_ in specs]:
                 s.first = False
