@@ -242,6 +242,19 @@ def test_instead_opens_a_command() -> None:
     assert shape("instead go to the bathroom") == [("navigate_to_marker", "bathroom")]
 
 
+def test_a_verbless_side_with_a_big_bare_number_is_an_angle() -> None:
+    assert one("left 90").action == "turn_by_angle" and one("left 90").yaw == pytest.approx(PI / 2)
+    assert (one("left 2").action, one("left 2").y) == ("move_relative", 2.0)  # small: metres
+
+
+def test_recognisers_homophones_of_to_and_right() -> None:
+    assert shape("go two the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("go 2 the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert one("go two metres").x == 2.0
+    assert one("turn rite 90 degrees").yaw == pytest.approx(-PI / 2)
+    assert shape("write a letter") == []  # only after a turn verb
+
+
 def test_paces_are_steps() -> None:
     assert one("take two paces forward").x == 1.0
 

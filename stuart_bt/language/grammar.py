@@ -215,7 +215,8 @@ DIRECTIONS: dict[str, tuple[int, int]] = {
 }
 ROTATIONS: dict[str, int] = {"clockwise": -1, "anticlockwise": 1, "counterclockwise": 1, "cw": -1, "ccw": 1,
                              "left": 1, "right": -1, "leftward": 1, "rightward": -1, "leftwards": 1,
-                             "rightwards": -1, "port": 1, "starboard": -1}
+                             "rightwards": -1, "port": 1, "starboard": -1,
+                             "rite": -1, "write": -1, "wright": -1}  # a recogniser's "right", after a turn verb only
 VAGUE = frozenset({("a", "bit"), ("a", "little"), ("a", "little", "bit"), ("slightly",), ("a", "tad"),
                    ("a", "touch"), ("a", "tiny", "bit"), ("just", "a", "bit"), ("just", "a", "little"),
                    ("little", "bit"), ("bit",), ("a", "smidge"), ("somewhat",), ("a", "few", "degrees"),
@@ -663,6 +664,7 @@ _NUMBER_STARTS = frozenset({
 })
 
 
+MAX_BARE_SIDESTEP_M = 10.0  # "left 90" with no unit: more than the lab is wide, so an angle
 STEP_WORDS = frozenset(w for w, (dim, factor) in UNITS.items() if dim == LENGTH and factor == STEP_M)
 _FRACTION_STARTS = frozenset({"a", "an", "half", "quarter", "quarters", "one", "three", "two"})  # "three quarters"
 
@@ -797,6 +799,8 @@ def _motion(s: _State, i: int) -> Result:
         return _do(s, i)
     if verb == "get" and t not in TO_WORDS and t not in HOME and t != "back":
         return _pick(s, i)
+    if t in ("2", "two", "too") and s.at(j + 1) in ("the", "your", "my", "our", "station"):
+        t = "to"  # "go two the kitchen": a recogniser's "to" (a number needs a unit or a direction)
     if t == "for" and (q := read_quantity(s.toks, j + 1)) is not None and q.dimension == LENGTH:
         return _move(s, j, verb)  # "go straight for two metres": how far, not where
     if t in TO_WORDS and t != "for" or (t == "for" and verb in ("head", "make", "go")):
@@ -1548,7 +1552,8 @@ def _verbless(s: _State, i: int) -> Result:
                 direction, amount, dim, vague, j = _motion_terms(s, i)
                 if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
                     return None  # "right." alone is an acknowledgement as often as a command
-                turnish = dim == ANGLE or (amount is None and direction in (LEFT, RIGHT))
+                turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
+                    dim == "" and amount > MAX_BARE_SIDESTEP_M)))  # "left 90": degrees, never 90 m
             got = _turn_terms(s, i, "turn") if turnish else _move(s, i, "move")
             if got is not None and _done(s, got[1]):
                 return got
