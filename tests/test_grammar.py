@@ -4,7 +4,10 @@ pin down the rules docs/voice.md promises.)"""
 
 from __future__ import annotations
 
+import json
 import math
+import random
+from pathlib import Path
 
 import pytest
 
@@ -366,6 +369,24 @@ def test_a_command_that_is_the_subject_of_a_sentence_or_an_idiom_is_none(text: s
     assert parse_command(text) == []
 
 
+def test_a_request_after_a_statement_is_a_command() -> None:
+    assert shape("I'm thirsty, could you bring me a bottle of water") == [("pick_up", "bottle")]
+    assert shape("I'm tired, please stop") == [("stop", "")]
+    # a question stays a question to its end
+    assert shape("do you want to go to the kitchen, pick up the bottle?") == []
+    assert shape("I went to the kitchen, would you like to go?") == []
+
+
+def test_help_me_before_a_verb_is_polite() -> None:
+    assert shape("can you help me find my keys") == [("find", "keys")]
+    assert shape("help me with the cup") == []
+
+
+def test_an_elliptic_place_never_holds_a_determiner() -> None:
+    assert shape("go to the entrance and close the door") == [("navigate_to_marker", "entrance")]
+    assert shape("let's head to the kitchen together") == [("navigate_to_marker", "kitchen")]
+
+
 def test_the_speaker_doing_something_alone_is_no_command() -> None:
     assert shape("let me go to the kitchen") == [] and shape("can I clap") == [] and shape("let me wave") == []
 
@@ -392,6 +413,28 @@ def test_a_hum_after_a_number_is_millimetres() -> None:
                                   "go to " * 3000, "1" * 10_000, "'''", "1.2.3.4", "-", "stop" + "!" * 1000])
 def test_anything_parses_without_error(text: str) -> None:
     assert isinstance(parse_command(text), list)
+
+
+@pytest.mark.parametrize("text", ["get over it", "wave before you", "grab the cup and hand it to me"])
+def test_what_once_broke_the_parser_parses(text: str) -> None:
+    assert isinstance(parse_command(text), list)
+
+
+def test_spliced_corpus_utterances_never_break_the_parser() -> None:
+    """Heads and tails of corpus utterances joined, and runs of corpus words: the shapes a
+    recogniser's cut-off or run-on text takes. Seeded, so a failure repeats."""
+    corpus = Path(__file__).parent / "data" / "utterances"
+    utterances = [json.loads(line)["utterance"].split() for path in sorted(corpus.glob("*.jsonl"))
+                  for line in path.read_text(encoding="utf-8").splitlines() if line.strip()]
+    rng = random.Random(7)
+    words = sorted({w for u in utterances for w in u})
+    for _ in range(3000):
+        a, b = rng.choice(utterances), rng.choice(utterances)
+        text = " ".join(a[:rng.randint(0, len(a))] + [rng.choice(["and", "then", ",", ".", ""])]
+                        + b[rng.randint(0, len(b)):])
+        assert isinstance(parse_command(text), list), text
+        noise = " ".join(rng.choice(words) for _ in range(rng.randint(1, 12)))
+        assert isinstance(parse_command(noise), list), noise
 
 
 def test_tokens_are_capped() -> None:

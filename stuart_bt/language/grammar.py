@@ -102,6 +102,7 @@ NP_STOP = BOUNDARY | frozenset({
     "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
     "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
     "you",  # a new clause: "... the kitchen you need a map"
+    "together", "alone",
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -175,7 +176,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("see", "if", "you", "can"), ("see", "if", "you", "could"), ("check", "if", "you", "can"),
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
-    ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"),
+    ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _p in POLITE:
@@ -882,8 +883,10 @@ def _pick(s: _State, i: int) -> Result:
         if t in ("going", "go", "moving", "move", "up", "down", "out", "ready", "closer", "away", "lost", "along",
                  "on", "off", "in", "inside", "started", "here", "over", "there", "a", "an", "rid", "it", "real",
                  "better", "well", "some", "started", "dressed", "to", "back", "home"):
-            if t in ("to", "back", "home", "over") or t == "back":
-                return _motion(s, i)
+            if t in ("to", "back", "home") or (t == "over" and s.at(j + 1) in TO_WORDS):
+                return _motion(s, i)  # (_motion hands "get" without a destination back here)
+            if t == "over":
+                return None  # "get over it"
             if t not in ("a", "an", "it", "some"):
                 return None
     elif verb in ("give", "hand", "pass"):
@@ -1387,8 +1390,9 @@ def _polite(s: _State, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in (("next",), ("like",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
-            break  # "like" is a filler only before a verb: "could you like go to the kitchen"
+        if p in (("next",), ("like",), ("help", "me"), ("help", "us")) and not (i + 1 < n and toks[
+                i + len(p)] in ALL_VERBS):
+            break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
         i += len(p)
     return i
 
@@ -1561,8 +1565,8 @@ def _verbless(s: _State, i: int) -> Result:
     if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
             not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
         words, j = _np(s, i)
-        if not words or not _done(s, j):
-            return None
+        if not words or not _done(s, j) or any(w in DETERMINERS for w in words[1:]):
+            return None  # "... and close the door": a verb and its object, not a second place
         target = _place(s, words) if last == NAVIGATE else _object(s, words)
         if target is None:
             return None
@@ -1684,6 +1688,8 @@ class Grammar:
                 elif kind == "reorder" and out:
                     reorder_at = len(out) - _last_clause_len(out)
                 continue
+            if dead and toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you")):
+                dead = False  # "I lost my keys, can you help me find them?": a request after the statement
             if dead:
                 i += 1
                 continue
@@ -1692,6 +1698,8 @@ class Grammar:
             if t == "before" and i + 1 < n and (toks[i + 1] in ("you", "u") or toks[i + 1] in ALL_VERBS):
                 i += 2 if toks[i + 1] in ("you", "u") else 1
                 hold = not attached  # "before you go, wave": the wave first; "wave before you go": in order
+                if i >= n:
+                    break
             if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
                     "you", "youve", "youre", "u"):
                 i += 2
@@ -1735,6 +1743,10 @@ class Grammar:
                 continue
             specs, j = got
             j = max(j, i + 1)
+            if not specs:  # "grab the cup and hand it to me": the handing over adds nothing
+                s.first = False
+                i = clause_end = _skip_rest(s, j)
+                continue
             if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
                 dead = True
                 correct_at = reorder_at = None
