@@ -415,17 +415,31 @@ def test_anything_parses_without_error(text: str) -> None:
     assert isinstance(parse_command(text), list)
 
 
-@pytest.mark.parametrize("text", ["get over it", "wave before you", "grab the cup and hand it to me"])
+@pytest.mark.parametrize("text", ["get over it", "wave before you", "grab the cup and hand it to me", "help me",
+                                  "next", "like"])
 def test_what_once_broke_the_parser_parses(text: str) -> None:
     assert isinstance(parse_command(text), list)
+
+
+def _corpus_words() -> list[list[str]]:
+    corpus = Path(__file__).parent / "data" / "utterances"
+    return [json.loads(line)["utterance"].split() for path in sorted(corpus.glob("*.jsonl"))
+            for line in path.read_text(encoding="utf-8").splitlines() if line.strip()]
+
+
+def test_every_stretch_of_a_corpus_utterance_parses() -> None:
+    """Every run of consecutive words of every corpus utterance: text cut off anywhere, which
+    is where a reader looking one word ahead runs past the end."""
+    for words in _corpus_words():
+        for a in range(len(words)):
+            for b in range(a + 1, len(words) + 1):
+                assert isinstance(parse_command(" ".join(words[a:b])), list), words[a:b]
 
 
 def test_spliced_corpus_utterances_never_break_the_parser() -> None:
     """Heads and tails of corpus utterances joined, and runs of corpus words: the shapes a
     recogniser's cut-off or run-on text takes. Seeded, so a failure repeats."""
-    corpus = Path(__file__).parent / "data" / "utterances"
-    utterances = [json.loads(line)["utterance"].split() for path in sorted(corpus.glob("*.jsonl"))
-                  for line in path.read_text(encoding="utf-8").splitlines() if line.strip()]
+    utterances = _corpus_words()
     rng = random.Random(7)
     words = sorted({w for u in utterances for w in u})
     for _ in range(3000):

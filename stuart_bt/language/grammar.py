@@ -1390,8 +1390,7 @@ def _polite(s: _State, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in (("next",), ("like",), ("help", "me"), ("help", "us")) and not (i + 1 < n and toks[
-                i + len(p)] in ALL_VERBS):
+        if p in (("next",), ("like",), ("help", "me"), ("help", "us")) and s.at(i + len(p)) not in ALL_VERBS:
             break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
         i += len(p)
     return i

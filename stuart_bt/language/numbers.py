@@ -79,6 +79,8 @@ def _digits(tok: str) -> float | None:
 
 def word_value(tok: str) -> float | None:
     """The value of one number token ("7", "1.5", "seven", "forty"), or ``None``."""
+    if not tok:
+        return None  # past the end of the tokens
     v = _digits(tok)
     if v is not None:
         return v
