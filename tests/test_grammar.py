@@ -311,6 +311,23 @@ def test_more_ways_to_say_it(text: str, want: list[tuple[str, str]]) -> None:
     assert shape(text) == want
 
 
+@pytest.mark.parametrize("text,want", [
+    ("bring to me the bottle", [("pick_up", "bottle")]), ("find for me the cup", [("find", "cup")]),
+    ("go in the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("walk until the entrance", [("navigate_to_marker", "entrance")]),
+    ("please to go to the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("you mind turning around", [("turn_around", "")]), ("mind getting me the bottle", [("pick_up", "bottle")]),
+    ("mind the gap", []), ("walk in the park", []),
+])
+def test_how_learners_of_english_say_it(text: str, want: list[tuple[str, str]]) -> None:
+    assert shape(text) == want
+
+
+def test_a_stop_after_a_comma_is_heard_even_in_a_question() -> None:
+    assert shape("what are you doing, stop") == [("stop", "")]
+    assert shape("is enough, stop") == [("stop", "")]
+
+
 def test_going_for_a_distance_is_a_move() -> None:
     assert one("go straight for two meters").x == 2.0
     assert shape("head for the kitchen") == [("navigate_to_marker", "kitchen")]

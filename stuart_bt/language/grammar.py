@@ -177,6 +177,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
+    ("please", "to"), ("mind",), ("you", "mind"),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _p in POLITE:
@@ -804,6 +805,9 @@ def _motion(s: _State, i: int) -> Result:
         t = "to"  # "go two the kitchen": a recogniser's "to" (a number needs a unit or a direction)
     if t == "for" and (q := read_quantity(s.toks, j + 1)) is not None and q.dimension == LENGTH:
         return _move(s, j, verb)  # "go straight for two metres": how far, not where
+    if s.at(j + 1) in ("the", "your", "my", "our") and (t == "in" and verb in ("go", "come", "head", "move") or (
+            t == "until" and verb in ("go", "come", "walk", "run", "head", "move", "drive"))):
+        t = "to"  # "go in the kitchen", "walk until the entrance": said for "into", "up to"
     if t in TO_WORDS and t != "for" or (t == "for" and verb in ("head", "make", "go")):
         k = j + 1
         k2 = k
@@ -905,6 +909,8 @@ def _pick(s: _State, i: int) -> Result:
             "me", "us", "him", "her") and j + 1 < n and toks[j + 1] not in BOUNDARY and toks[j + 1] not in (
             "to", "here", "over", "back"):
         j += 1
+    elif s.at(j) in ("to", "for") and s.at(j + 1) in ("me", "us") and s.at(j + 2) in DETERMINERS:
+        j += 2  # "bring to me the bottle": who it is for, said first
     words, e = _np(s, j)
     target = _object(s, words)
     if target is None or (verb == "take" and words[-1] in NP_BLOCK):
@@ -1007,6 +1013,8 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
             return _way_to(s, j + 2)
         if s.at(j) in ("me", "us") and j + 1 < n and toks[j + 1] not in BOUNDARY and toks[j + 1] not in TRAILING:
             j += 1
+        elif s.at(j) in ("to", "for") and s.at(j + 1) in ("me", "us") and s.at(j + 2) in DETERMINERS:
+            j += 2  # "find for me the cup"
     elif verb in ("locate", "spot", "detect"):
         pass
     words, e = _np(s, j)
@@ -1390,11 +1398,15 @@ def _polite(s: _State, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in (("next",), ("like",), ("help", "me"), ("help", "us")) and s.at(i + len(p)) not in ALL_VERBS:
+        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS:
             break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
         i += len(p)
     return i
 
+
+# polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
+_BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
+                                 ("you", "mind")})
 
 REQUESTS: tuple[tuple[str, ...], ...] = tuple(
     (m, who, *please, v) for m in ("can", "could", "may") for who in ("i", "we") for please in ((), ("please",))
@@ -1687,8 +1699,9 @@ class Grammar:
                 elif kind == "reorder" and out:
                     reorder_at = len(out) - _last_clause_len(out)
                 continue
-            if dead and toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you")):
-                dead = False  # "I lost my keys, can you help me find them?": a request after the statement
+            if dead and toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
+                    t in ("stop", "halt", "freeze") and _done(s, i + 1))):
+                dead = False  # "I lost my keys, can you help me find them?", "is enough, stop": said to the robot
             if dead:
                 i += 1
                 continue
