@@ -1505,7 +1505,7 @@ def _clause(s: _State, i: int) -> Result:
     t = toks[i]
     if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY):
         return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
-    if t in VISIT_VERBS and (got := _visit_by(s, i)) is not None:
+    if t in VISIT_VERBS and s.at(i + 1) == "by" and (got := _visit_by(s, i)) is not None:
         return got
     sp = s.phrase_at(i, _STOP_BY_FIRST) if t in _STOP_BY_FIRST else None
     if sp is not None and (len(sp) > 1 or t in ("stop", "halt", "freeze", "enough", "whoa", "woah")):
@@ -1557,7 +1557,7 @@ def _verbless(s: _State, i: int) -> Result:
             if target is not None and _done(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
                 return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
             return None
-    if last == NAVIGATE and (num := _numbered(s.last_place)) and word_value(t) is not None and _done(s, i + 1):
+    if last == NAVIGATE and word_value(t) is not None and (num := _numbered(s.last_place)) and _done(s, i + 1):
         return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
     if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in _NUMBER_STARTS or (
             t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):

@@ -224,15 +224,16 @@ def read_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
     return value, j
 
 
-def _pi(toks: Sequence[str], i: int) -> tuple[float, int] | None:
-    """Angles in radians said with pi: "pi", "two pi", "pi over two", "pi by 4", "half pi"."""
+def _pi(toks: Sequence[str], i: int, number: tuple[float, int] | None) -> tuple[float, int] | None:
+    """Angles in radians said with pi: "pi", "two pi", "pi over two", "pi by 4", "half pi".
+    ``number`` is what :func:`read_number` read at ``i`` (read once: quantities are most of a
+    command's parsing time)."""
     n = len(toks)
     factor, j = 1.0, i
     if j < n and toks[j] != "pi":
-        got = read_number(toks, j)
-        if got is None or got[1] >= n or toks[got[1]] != "pi":
+        if number is None or number[1] >= n or toks[number[1]] != "pi":
             return None
-        factor, j = got
+        factor, j = number
     if j >= n or toks[j] != "pi":
         return None
     j += 1
@@ -274,10 +275,10 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
     t = toks[i]
     j = i
     value: float
-    got = _pi(toks, i)
-    if got is not None:
-        return Quantity(got[0], ANGLE, got[1])
     got = read_number(toks, i)
+    pi = _pi(toks, i, got)
+    if pi is not None:
+        return Quantity(pi[0], ANGLE, pi[1])
     if got is None and t in SOUNDS_LIKE and i + 1 < n and toks[i + 1] in UNITS and toks[i + 1].endswith("s"):
         got = SOUNDS_LIKE[t], i + 1  # "move forward to meters": a recogniser's "two"
     if got is None:
