@@ -8,8 +8,8 @@ planned motion with the ``confirm`` command), the arm is blended in and moves: a
 descend, close the hand, lift, and holds. A release lowers back to the grasp height, opens the
 hand, retracts to the neutral pose and blends the arm back to the walking controller.
 
-Objects come from the ``objects`` option or skills/objects.json (until perception feeds a
-memory); the robot's pose comes with every request.
+Objects come from the request's ``position`` (where perception saw them), else the ``objects``
+option or skills/objects.json; the robot's pose comes with every request.
 
 Options (besides the link settings in :mod:`stuart_bt.skills.vendor`): ``objects``, ``solver``
 (pin | placo, default pin), ``confirm`` (default true), ``ramp`` (0.5 s blend ramp),
@@ -109,11 +109,11 @@ class UnitreePick(DryPick):
         return {j: desc.NEUTRAL[j] for side in desc.SIDES for j in desc.arm_joints(side)}
 
     # -- planning ---------------------------------------------------------------------------------
-    def pick(self, label: str, arm: str, robot_pose: Pose) -> Activity:
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        position = self._known(label)
+        position = self._aim(label, position)
         target = world_to_torso(np.array([position.x, position.y, position.z + self.grasp_dz]), robot_pose)
         side = arm if arm != "auto" else ("left" if _lateral(robot_pose, position) >= 0 else "right")
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
