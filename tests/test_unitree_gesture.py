@@ -5,30 +5,17 @@ from __future__ import annotations
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventStream
-from unitree_fake import FakeRobot
+from unitree_fake import FakeRobot, robot, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
 RAMP = 0.2
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
-
-
 @pytest.fixture
-def gesture(robot, tmp_path):
-    clock = ScaledClock(4.0)  # library durations pass four times faster; the stream keeps 50 Hz
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("gesture",),
-                     options={"gesture": robot.options(ramp=RAMP)}, run_dir=tmp_path, handshake_timeout=30.0)
-    sup.start()
-    yield sup
-    sup.shutdown()
+def gesture(unitree_daemon):
+    return unitree_daemon("gesture", 4.0, ramp=RAMP)  # library durations pass 4x faster; the stream keeps 50 Hz
 
 
 def play(sup: Supervisor, **args):

@@ -7,39 +7,17 @@ import math
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
-from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-from stuart_bt.events import EventRecorder, EventStream
-from unitree_fake import FakeRobot
+from stuart_bt.daemon.supervisor import Supervisor
+from unitree_fake import FakeRobot, robot, start_failure, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
 START = {"x": 1.0, "y": 2.0, "yaw": 0.0}
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot(nav_speed=8.0) as fake:
-        yield fake
-
-
 @pytest.fixture
-def loco(robot, tmp_path):
-    made: list[Supervisor] = []
-
-    def start(**options) -> Supervisor:
-        clock = ScaledClock(1.0)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                         options={"loco": robot.options(start_pose=START, map="/home/unitree/lab.pcd", **options)},
-                         run_dir=tmp_path, handshake_timeout=30.0)
-        sup.recorder = EventRecorder(sup.events)
-        made.append(sup)
-        sup.start()
-        return sup
-
-    yield start
-    for sup in made:
-        sup.shutdown()
+def loco(unitree_daemon):
+    return lambda **options: unitree_daemon("loco", start_pose=START, map="/home/unitree/lab.pcd", **options)
 
 
 def run(sup: Supervisor, cmd: str, timeout: float = 20.0, **args):
@@ -148,26 +126,13 @@ def test_mapping_commands_send_the_slam_service_its_ids_and_paths(robot, loco):
 
 
 def test_a_map_that_will_not_load_refuses_ready_with_code_507(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                     options={"loco": robot.options(map="/home/unitree/missing.pcd")}, run_dir=tmp_path,
-                     handshake_timeout=30.0)
-    with pytest.raises(DaemonStartError) as err:
-        sup.start()
-    sup.shutdown()
-    assert "vendor code 507 (the map could not be loaded)" in str(err.value)
-    assert "Traceback" not in str(err.value)
+    message = start_failure("loco", robot.options(map="/home/unitree/missing.pcd"), tmp_path)
+    assert "vendor code 507 (the map could not be loaded)" in message
+    assert "Traceback" not in message
 
 
 def test_a_silent_service_refuses_ready_naming_service_interface_and_domain(tmp_path):
     with FakeRobot(silent="sport") as silent:
-        clock = ScaledClock(1.0)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                         options={"loco": silent.options(probe_timeout=0.5)}, run_dir=tmp_path,
-                         handshake_timeout=30.0)
-        with pytest.raises(DaemonStartError) as err:
-            sup.start()
-        sup.shutdown()
-    message = str(err.value)
+        message = start_failure("loco", silent.options(probe_timeout=0.5), tmp_path)
     assert "'sport' service does not answer on interface lo, DDS domain" in message
     assert str(silent.domain) in message

@@ -5,11 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventStream
 from stuart_bt.sim.robot import description as desc
-from unitree_fake import FakeRobot
+from unitree_fake import robot, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 pytest.importorskip("pinocchio", reason="the pick planner needs the 'ik' extra")
@@ -19,21 +17,9 @@ HERE = {"x": 0.0, "y": 0.0, "yaw": 0.0}
 RIGHT_ARM_MOTORS = range(22, 29)
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
-
-
 @pytest.fixture
-def pick(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("pick",),
-                     options={"pick": robot.options(objects=OBJECTS, ramp=0.2)}, run_dir=tmp_path,
-                     handshake_timeout=30.0)
-    sup.start()
-    yield sup
-    sup.shutdown()
+def pick(unitree_daemon):
+    return unitree_daemon("pick", objects=OBJECTS, ramp=0.2)
 
 
 def request(sup: Supervisor, cmd: str, **args):

@@ -7,35 +7,15 @@ import shutil
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
-from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-from stuart_bt.events import EventStream
-from unitree_fake import FakeRobot
+from stuart_bt.daemon.supervisor import Supervisor
+from unitree_fake import robot, start_failure, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
-
-
 @pytest.fixture
-def tts(robot, tmp_path):
-    made: list[Supervisor] = []
-
-    def start(factor: float = 8.0, **options) -> Supervisor:
-        clock = ScaledClock(factor)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("tts",),
-                         options={"tts": robot.options(**options)}, run_dir=tmp_path, handshake_timeout=30.0)
-        made.append(sup)
-        sup.start()
-        return sup
-
-    yield start
-    for sup in made:
-        sup.shutdown()
+def tts(unitree_daemon):
+    return lambda factor=8.0, **options: unitree_daemon("tts", factor, **options)
 
 
 def say(sup: Supervisor, text: str, timeout: float = 20.0):
@@ -82,14 +62,9 @@ def test_cancelling_streamed_speech_sends_play_stop(robot, tts):
 
 
 def test_piper_without_a_voice_file_refuses_to_start_with_one_clear_message(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("tts",),
-                     options={"tts": robot.options(engine="piper")}, run_dir=tmp_path, handshake_timeout=30.0)
-    with pytest.raises(DaemonStartError) as err:
-        sup.start()
-    sup.shutdown()
-    assert "piper needs the 'piper' program and a local voice model (piper_model option)" in str(err.value)
-    assert "Traceback" not in str(err.value)
+    message = start_failure("tts", robot.options(engine="piper"), tmp_path)
+    assert "piper needs the 'piper' program and a local voice model (piper_model option)" in message
+    assert "Traceback" not in message
 
 
 def test_a_voice_service_error_fails_the_utterance_with_its_code(robot, tts):

@@ -107,3 +107,53 @@ class FakeRobot:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+# -- fixtures the unitree test files import --------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def robot():
+    """One fake robot per test file (starting one takes a few seconds)."""
+    with FakeRobot(nav_speed=8.0) as fake:
+        yield fake
+
+
+@pytest.fixture
+def unitree_daemon(robot, tmp_path):
+    """``unitree_daemon(family, factor=1.0, **options)``: a started unitree daemon talking to
+    ``robot``; shut down after the test."""
+    from stuart_bt.clock import ScaledClock
+    from stuart_bt.daemon.supervisor import Supervisor
+    from stuart_bt.events import EventRecorder, EventStream
+
+    made: list[Supervisor] = []
+
+    def start(family: str, factor: float = 1.0, **options: Any) -> Supervisor:
+        clock = ScaledClock(factor)
+        sup = Supervisor("unitree", clock, EventStream(clock), families=(family,),
+                         options={family: robot.options(**options)}, run_dir=tmp_path, handshake_timeout=30.0)
+        sup.recorder = EventRecorder(sup.events)
+        made.append(sup)
+        sup.start()
+        return sup
+
+    yield start
+    for sup in made:
+        sup.shutdown()
+
+
+def start_failure(family: str, options: dict[str, Any], run_dir: Path) -> str:
+    """The message of the DaemonStartError a unitree daemon with ``options`` gives."""
+    from stuart_bt.clock import ScaledClock
+    from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
+    from stuart_bt.events import EventStream
+
+    clock = ScaledClock(1.0)
+    sup = Supervisor("unitree", clock, EventStream(clock), families=(family,), options={family: options},
+                     run_dir=run_dir, handshake_timeout=30.0)
+    try:
+        with pytest.raises(DaemonStartError) as err:
+            sup.start()
+    finally:
+        sup.shutdown()
+    return str(err.value)
