@@ -20,6 +20,7 @@ setup(
         "stuart_bt.skills": ["*.json"],
         "stuart_bt.sim": ["maps/*.json", "maps/*.png", "maps/*.yaml", "scenes/*.xml", "models/*.xml", "models/*.urdf"],
         "stuart_bt.tasks": ["*.yaml"],
+        "stuart_bt.web": ["static/*"],
     },
     include_package_data=True,
 )

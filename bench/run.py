@@ -24,7 +24,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import htn, ik, llm, mission, parse, roundtrip, sim, tick_overhead
+from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, tick_overhead, web
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -36,6 +36,9 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     parse.NAME: parse.run,
     mission.NAME: mission.run,
     llm.NAME: llm.run,
+    ros.NAME: ros.run,
+    perception.NAME: perception.run,
+    web.NAME: web.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")

@@ -97,6 +97,29 @@ LEAVES: dict[str, LeafSpec] = {
             default_timeout=180.0,
         ),
         LeafSpec(
+            "approach",
+            "Walk up to a remembered object (or a map point) and stop with it within reach, facing "
+            "it; the backend picks a free spot on its map.",
+            (
+                Param("object", "string", "Object label; its position is read from the world state when "
+                      "the leaf starts.", required=True),
+                Param("x", "number", "Map x of the point to face, metres.", required=True),
+                Param("y", "number", "Map y of the point to face, metres.", required=True),
+                Param("standoff", "number", "Metres the point ends up ahead of the robot's base (the G1's "
+                      "arm reaches ~0.42 m from the shoulder).", default=0.29),
+                Param("lateral", "number", "Metres the point ends up left of the robot's centre line "
+                      "(negative: right); 0.1 puts it in front of a shoulder. The daemon may mirror it when "
+                      "that side is blocked.", default=0.0),
+                Param("tolerance", "number", "Arrival tolerance in metres.", default=0.10),
+                Param("yaw_tolerance", "angle", "Arrival heading tolerance in radians.", default=0.0873),
+            ),
+            family="loco",
+            command="navigate",
+            shorthand="object",
+            one_of=(("object",), ("x", "y")),
+            default_timeout=180.0,
+        ),
+        LeafSpec(
             "turn",
             "Turn in place by an angle (radians, counter-clockwise positive) or by degrees.",
             (
@@ -154,9 +177,9 @@ LEAVES: dict[str, LeafSpec] = {
         ),
         LeafSpec(
             "find",
-            "Locate an object by label; its position goes to the world state.",
+            "Look for an object by label with the head camera; its position goes to the world state.",
             (Param("object", "string", "Object label, e.g. 'cup'.", required=True),),
-            family="pick",
+            family="vision",
             shorthand="object",
             default_timeout=60.0,
         ),
@@ -208,7 +231,7 @@ LEAVES: dict[str, LeafSpec] = {
 }
 
 SKILLS = tuple(n for n, s in LEAVES.items() if s.family is not None or n in ("wait", "stop"))
-FAMILIES = ("loco", "tts", "gesture", "pick")
+FAMILIES = ("loco", "tts", "gesture", "pick", "vision")
 
 
 @dataclass(frozen=True)

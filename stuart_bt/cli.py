@@ -193,7 +193,10 @@ VOICE_COMMANDS = {
     "plan": ("stuart_bt.htn.explain:add_plan_command", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
+    "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
+    "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
     "map": ("stuart_bt.map_cli:add_map_command", "robot SLAM maps (unitree): start mapping, save, relocalise, close"),
+    "serve": ("stuart_bt.web.cli:add_serve_command", "the live web view: tree, mission console, map, gestures"),
 }
 
 

@@ -18,6 +18,9 @@ Event kinds used by the framework (``data`` keys in brackets):
 - ``blackboard``: a key was written [key, value]
 - ``warning``: something a user should see (tick overrun, garbage line) [message]
 - ``utterance`` / ``reply``: conversation in and out [text]
+- ``pose``: the robot's map pose changed [x, y, yaw]
+- ``memory``: perception's spatial memory after a ``find`` [format, t, frame, objects] (docs/perception.md;
+  the ROS bridge publishes it on ``/spatial_memory/*``, docs/ros.md)
 """
 
 from __future__ import annotations

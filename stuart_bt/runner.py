@@ -232,8 +232,9 @@ class Session:
         path = [(e.data["x"], e.data["y"]) for e in self.recorder.events if e.kind == "pose"]
         markers = {m.name: {"x": m.x, "y": m.y, "yaw": m.yaw} for m in self.blackboard.world.markers.values()}
         objects = {k: {"x": o.x, "y": o.y} for k, o in self.blackboard.world.objects.items()}
+        memories = [e.data.get("objects", []) for e in self.recorder.events if e.kind == "memory"]
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        draw_map_png(scene_grid(), markers, path, objects, out)
+        draw_map_png(scene_grid(), markers, path, objects, out, memory=memories[-1] if memories else ())
 
     def _settle(self, timeout: float = 1.0) -> None:
         """After the run: wait (wall time) for replies still owed, e.g. to cancels, so the report

@@ -59,6 +59,7 @@ class KnownObject:
     z: float = 0.0
     confidence: float = 1.0
     seen_at: float = 0.0
+    source: str = "catalogue"  # "vision": placed by perception (pick then aims at this position)
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)

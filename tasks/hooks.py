@@ -42,36 +42,21 @@ def object_at_marker(state: Any, obj: str) -> bool:
 
 # -- functions ----------------------------------------------------------------------------------------
 @HOOKS.function
-def standoff_args(state: Any, obj: str) -> dict[str, Any]:
-    """Navigate arguments that stop the robot ``standoff`` metres short of the object, facing it
-    (the G1's arm reaches ~0.42 m from the shoulder). When the position is only known at run
-    time, walk to the object's remembered position as the leaf will read it then
-    (``$world.objects.<obj>.x``) and arrive within ``standoff`` of it."""
-    spot = _object_xy(state, obj)
-    if spot is None:
-        if not _LABEL.match(obj):
-            raise ValueError(f"object label {obj!r} cannot be referenced at run time; use letters, digits and '_'")
-        return {"x": f"$world.objects.{obj}.x", "y": f"$world.objects.{obj}.y", "tolerance": state["standoff"]}
-    pose = standoff_pose(state, obj)
-    return {"x": round(pose["x"], 3), "y": round(pose["y"], 3), "yaw": round(pose["yaw"], 4)}
-
-
-@HOOKS.function
 def standoff_pose(state: Any, obj: str) -> dict[str, float] | None:
-    """Where the robot will stand to reach the object: on the line from the object towards the
-    robot (or towards the nearest marker when the robot's pose is unknown), ``standoff`` away."""
+    """Where the robot is predicted to stand to reach the object: heading along the line from the
+    robot (or, when its pose is unknown, the nearest marker) to the object, with the object
+    ``standoff`` ahead and ``reach_side`` to the left. The loco daemon may choose another side of
+    the object when furniture is in the way; the prediction only feeds later steps' geometry."""
     spot = _object_xy(state, obj)
     if spot is None:
         return None
     ox, oy = spot
     origin = state["pose"] if isinstance(state["pose"], dict) else _nearest_marker(state, ox, oy)
-    dx, dy = (origin["x"] - ox, origin["y"] - oy) if origin else (-1.0, 0.0)
-    length = math.hypot(dx, dy)
-    if length < 1e-6:
-        dx, dy, length = -1.0, 0.0, 1.0
-    d = float(state["standoff"])
-    x, y = ox + dx / length * d, oy + dy / length * d
-    return {"x": x, "y": y, "yaw": math.atan2(oy - y, ox - x)}
+    dx, dy = (ox - origin["x"], oy - origin["y"]) if origin else (1.0, 0.0)
+    heading = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-6 else 0.0
+    ahead, side = float(state["standoff"]), float(state["reach_side"])
+    cos, sin = math.cos(heading), math.sin(heading)
+    return {"x": ox - ahead * cos + side * sin, "y": oy - ahead * sin - side * cos, "yaw": heading}
 
 
 @HOOKS.function

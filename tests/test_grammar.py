@@ -29,6 +29,7 @@ def shape(text: str) -> list[tuple[str, str]]:
 @pytest.mark.parametrize("text,x,y", [
     ("move forward two metres", 2, 0), ("go back two metres", -2, 0), ("move left 1 metre", 0, 1),
     ("move right 1 metre", 0, -1), ("step back 50 cm", -0.5, 0), ("move 2 m to the left", 0, 2),
+    ("go forward point five metres", 0.5, 0), ("go forward nought point five metres", 0.5, 0),
 ])
 def test_moves_are_x_forward_y_left(text: str, x: float, y: float) -> None:
     i = one(text)
@@ -152,6 +153,44 @@ def test_sources_destinations_and_purposes() -> None:
     assert shape("go to the kitchen to get a drink") == [("navigate_to_marker", "kitchen"), ("pick_up", "drink")]
 
 
+def test_a_find_verb_said_as_a_noun_is_a_find() -> None:
+    assert shape("have a look for my phone") == [("find", "phone")]
+    assert shape("take a quick look around for the cup") == [("find", "cup")]
+    assert shape("have a peek for the apple") == [("find", "apple")]
+    assert shape("take a look around the kitchen for the cup") == [("navigate_to_marker", "kitchen"), ("find", "cup")]
+    assert shape("have a seat") == [] and shape("take a look at this") == []  # nothing to find
+
+
+def test_check_for_is_a_search() -> None:
+    assert shape("check for the cup") == [("find", "cup")]
+    assert shape("check the kitchen for the bottle") == [("navigate_to_marker", "kitchen"), ("find", "bottle")]
+    assert shape("check the kitchen") == [] and shape("check the time") == []  # check what?
+
+
+def test_being_somewhere_after_when_or_once_is_getting_there() -> None:
+    assert shape("once you're at the workbench pick up the screwdriver") == [
+        ("navigate_to_marker", "workbench"), ("pick_up", "screwdriver")]
+    assert shape("when you are in the kitchen, look for the apple") == [
+        ("navigate_to_marker", "kitchen"), ("find", "apple")]
+    # said again after the navigation it repeats, it adds nothing
+    assert shape("go to the kitchen and once you are in the kitchen pick up the cup") == [
+        ("navigate_to_marker", "kitchen"), ("pick_up", "cup")]
+    assert shape("as soon as you arrive in the bathroom turn around") == [
+        ("navigate_to_marker", "bathroom"), ("turn_around", "")]
+    assert shape("when you are at the table pick up the cup") == [("pick_up", "cup")]  # furniture: no place
+    assert shape("when you're ready go to the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("if you're in the kitchen pick up the cup") == []  # a condition the grammar cannot check
+
+
+def test_a_subordinate_clause_is_never_an_ellipsis() -> None:
+    # "you" is its subject: "ready" is not a second place, "finished" not a second object
+    assert shape("go to the kitchen and when you're ready, wave") == [("navigate_to_marker", "kitchen"),
+                                                                      ("gesture", "wave")]
+    assert shape("pick up the cup and once you're finished, wave") == [("pick_up", "cup"), ("gesture", "wave")]
+    assert shape("go to the kitchen and once you arrive, wave") == [("navigate_to_marker", "kitchen"),
+                                                                    ("gesture", "wave")]
+
+
 def test_but_first_puts_the_second_clause_first() -> None:
     assert shape("go to the kitchen but first turn around") == [("turn_around", ""), ("navigate_to_marker", "kitchen")]
 
@@ -191,6 +230,18 @@ def test_conversation_is_no_command(text: str) -> None:
     assert parse_command(text) == []
 
 
+@pytest.mark.parametrize("text,name", [
+    ("let me shake your hand", "shake hand"), ("can I shake your hand", "shake hand"), ("may I hug you", "hug"),
+    ("let me give you a hug", "hug"), ("could we give you a high five", "high five"),
+])
+def test_the_speaker_asking_to_share_a_gesture_is_a_gesture(text: str, name: str) -> None:
+    assert shape(text) == [("gesture", name)]
+
+
+def test_the_speaker_doing_something_alone_is_no_command() -> None:
+    assert shape("let me go to the kitchen") == [] and shape("can I clap") == [] and shape("let me wave") == []
+
+
 def test_a_question_ends_at_its_sentence() -> None:
     assert shape("what a day. go to the kitchen") == [("navigate_to_marker", "kitchen")]
     assert shape("great job, now wave") == [("gesture", "wave")]
@@ -202,6 +253,11 @@ def test_recogniser_noise() -> None:
     assert shape("go go to the the kitchen") == [("navigate_to_marker", "kitchen")]
     assert one("move forward 2m").x == 2 and one("turn left 90°").yaw == pytest.approx(PI / 2)
     assert shape("go. to. the kitchen.") == [("navigate_to_marker", "kitchen")]
+
+
+def test_a_hum_after_a_number_is_millimetres() -> None:
+    assert one("go forward 500 mm").x == pytest.approx(0.5)
+    assert one("go forward mm two metres").x == pytest.approx(2.0)  # a hum elsewhere is dropped
 
 
 @pytest.mark.parametrize("text", ["", " ", "???", "\x00\x01", "and and and", "then", "🙂" * 50, "the " * 5000,

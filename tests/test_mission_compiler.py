@@ -34,7 +34,7 @@ def test_fetch_compiles_to_one_sequence_per_compound_and_one_leaf_per_step(plan_
         ["sequence mission/fetch",
          "speak mission/fetch/acknowledge",
          ["sequence mission/fetch/get",
-          ["sequence mission/fetch/get/go_near", "navigate mission/fetch/get/go_near/approach"],
+          ["sequence mission/fetch/get/go_near", "approach mission/fetch/get/go_near/approach"],
           "pick mission/fetch/get/pick_object"],
          "navigate mission/fetch/go_to",
          "release mission/fetch/put_down"]]
@@ -110,4 +110,4 @@ def test_show_draws_the_compiled_tree_with_task_names(plan_for):
     text = show(plan_for("fetch(bottle, workbench)"))
 
     assert text.splitlines()[0].startswith("[->] mission")
-    assert "(approach)" in text and "navigate marker=workbench" in text
+    assert "approach object=bottle" in text and "navigate marker=workbench" in text

@@ -21,6 +21,8 @@ def toks(text: str) -> list[str]:
     ("half", 0.5), ("a half", 0.5), ("a quarter", 0.25), ("three quarters", 0.75), ("two thirds", 2 / 3),
     ("one and a half", 1.5), ("two and a half", 2.5), ("2 and a half", 2.5), ("one and three quarters", 1.75),
     ("one point five", 1.5), ("zero point seven five", 0.75), ("a couple of", 2), ("a couple", 2), ("a few", 3),
+    ("point five", 0.5), ("point two five", 0.25), ("point 5", 0.5), ("one point 25", 1.25),
+    ("nought point five", 0.5),
 ])
 def test_numbers(text: str, value: float) -> None:
     got = read_number(toks(text), 0)

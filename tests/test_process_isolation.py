@@ -1,4 +1,5 @@
-"""Process isolation: the framework never loads a vendor SDK, a daemon never loads ROS.
+"""Process isolation: the framework never loads a vendor SDK, a daemon never loads ROS, and the ROS
+bridge process (the only one with rclpy) refuses the vendor SDK.
 
 Each process runs under a tiny import recorder (a ``sys.meta_path`` entry that writes down every
 module name asked for, imported or not, as it happens), so an attempt counts even when the
@@ -10,6 +11,8 @@ backends are covered as soon as they are registered.
 from __future__ import annotations
 
 import importlib
+import importlib.util
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -114,3 +117,85 @@ def test_the_map_command_leaves_the_vendor_sdk_to_the_loco_daemon(tmp_path):
 def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
     modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
     assert forbidden(modules, ROS) == ["rosidl_probe_absent"]
+
+
+BRIDGE = r"""
+import os, signal, threading
+threading.Timer(4.0, lambda: os.kill(os.getpid(), signal.SIGTERM)).start()  # a short life, then a clean stop
+from stuart_bt.cli import main
+raise SystemExit(main(["ros", "--backend", "dry"]))
+"""
+
+
+def _ros_env() -> dict[str, str]:
+    return {**os.environ, "ROS_DOMAIN_ID": str(1 + os.getpid() % 100), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+
+
+def test_the_ros_bridge_process_imports_rclpy_and_never_a_vendor_sdk(tmp_path):
+    pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed")
+    record = tmp_path / "bridge.imports"
+    run = subprocess.run([sys.executable, "-c", RECORDER, str(record), "code", BRIDGE], stdin=subprocess.DEVNULL,
+                         capture_output=True, text=True, timeout=90, env=_ros_env())
+    modules = set(record.read_text().split())
+    assert run.returncode == 0, run.stderr[-500:]
+    assert "ros bridge: node /stuart_bridge" in run.stdout
+    assert {"rclpy", "stuart_bt.ros.node", "stuart_bt.mission.executor"} <= modules
+    assert forbidden(modules, VENDOR) == []
+
+
+@pytest.mark.parametrize("first, then", [("unitree_sdk2py", "stuart_bt.ros.node"),
+                                         ("stuart_bt.ros.node", "unitree_sdk2py"),
+                                         ("stuart_bt.ros.node", "cyclonedds")])
+def test_a_process_cannot_hold_both_the_ros_bridge_and_the_vendor_sdk(first, then):
+    pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed")
+    if importlib.util.find_spec("unitree_sdk2py") is None:  # not imported here: this process stays clean
+        pytest.skip("the robot extra (vendor SDK) is not installed")
+    run = subprocess.run([sys.executable, "-c", f"import {first}\nimport {then}"], stdin=subprocess.DEVNULL,
+                         capture_output=True, text=True, timeout=60, env=_ros_env())
+    assert run.returncode != 0
+    last = run.stderr.strip().splitlines()[-1]
+    assert last.startswith("ImportError:") and "vendor SDK" in last and "daemons" in last
+
+
+def test_the_vision_daemon_renders_through_the_world_and_never_loads_mujoco_itself(tmp_path):
+    """Perception runs in its own process with OpenCV; MuJoCo (and its GL context) stays in the
+    world server, so a vision daemon costs no second renderer."""
+    modules = imports_of(tmp_path, "vision-sim", "daemon", "stuart_bt.skills.vision", "--backend", "sim",
+                         "--clock", "wall")
+    assert {"stuart_bt.skills.vision.sim", "stuart_bt.perception.pipeline", "cv2"} <= modules
+    assert forbidden(modules, ("mujoco",)) == []
+    assert forbidden(modules, VENDOR + ROS) == []
+
+
+WEB_SERVER = r"""
+import os, signal, socket, threading, time, urllib.request
+from stuart_bt.cli import main
+
+with socket.socket() as s:
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+
+
+def visit_then_stop():
+    for _ in range(600):
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/state", timeout=2).read()
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/markers", timeout=2).read()
+            break
+        except OSError:
+            time.sleep(0.1)
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+threading.Thread(target=visit_then_stop, daemon=True).start()
+main(["serve", TREE, "--paused", "--port", str(port)])
+"""
+
+
+def test_the_web_server_never_imports_a_vendor_sdk_or_ros(tmp_path):
+    pytest.importorskip("starlette", reason="the web view needs the web extra")
+    tree = Path(__file__).resolve().parents[1] / "trees" / "greet.yaml"
+    modules = imports_of(tmp_path, "web", "code", WEB_SERVER.replace("TREE", repr(str(tree))))
+    assert {"stuart_bt.web.app", "stuart_bt.web.control", "uvicorn", "starlette"} <= modules
+    assert forbidden(modules, VENDOR) == []
+    assert forbidden(modules, ROS) == []

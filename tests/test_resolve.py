@@ -61,6 +61,15 @@ def test_an_object_is_not_a_place(lab: Resolver) -> None:
     assert not r.ok and "object" in r.reason
 
 
+def test_going_to_an_object_walks_up_to_it_and_a_place_wins_over_an_object(lab: Resolver) -> None:
+    to_mug = lab.resolve(TaskIntent("navigate_to_marker", "the mug"))
+    assert to_mug is not None and (to_mug.kind, to_mug.name) == ("object", "cup")
+    to_kitchen = lab.resolve(TaskIntent("navigate_to_marker", "the kitchen"))
+    assert to_kitchen is not None and (to_kitchen.kind, to_kitchen.name) == ("marker", "kitchen")
+    nowhere = lab.resolve(TaskIntent("navigate_to_marker", "the garage"))
+    assert nowhere is not None and nowhere.kind == "marker" and not nowhere.ok  # the place error is what is said
+
+
 @pytest.mark.parametrize("spoken,label", [
     ("bottle", "bottle"), ("the red cup", "cup"), ("cups", "cup"), ("a mug", "cup"), ("water bottle", "bottle"),
     ("screw driver", "screwdriver"), ("botle", "bottle"), ("the green apple", "apple"), ("book", "book"),

@@ -62,7 +62,7 @@ def test_the_default_state_is_the_lab_with_the_robot_at_the_entrance() -> None:
     assert state["at"] == "entrance" and state["speaker_at"] == "entrance" and state["held"] is None
     assert state["objects"]["bottle"] == {"x": 4.01, "y": 1.38, "z": 0.855}
     assert state["names"]["station_2"] == "3D printers" and state["names"]["kitchen"] == "kitchen"
-    assert state["look_steps"] == 4 and state["standoff"] == 0.33
+    assert state["look_steps"] == 4 and state["standoff"] == 0.29
 
 
 def test_a_robot_away_from_its_last_marker_is_at_no_marker() -> None:
@@ -80,10 +80,10 @@ def test_a_robot_away_from_its_last_marker_is_at_no_marker() -> None:
     ("move_relative", ["speak text=I am staying where I am"]),
     ("turn_by_angle(1.5708)", ["speak text=Turning", "turn angle=1.57"]),
     ("turn_around", ["speak text=Turning around", "turn angle=3.14"]),
-    ("pick_up(bottle)", ["speak text=Picking up the bottle", "navigate x=3.70 y=1.27 yaw=0.33", "pick object=bottle"]),
+    ("pick_up(bottle)", ["speak text=Picking up the bottle", "approach object=bottle standoff=0.29 lateral=-0.10", "pick object=bottle"]),
     ("gesture('high wave')", ["speak text=Doing a high wave", "gesture play=high wave"]),
     ("stop", ["speak text=Stopping", "stop"]),
-    ("find(cup)", ["speak text=Looking for the cup", "navigate x=0.76 y=-2.68 yaw=-1.29"]),
+    ("find(cup)", ["speak text=Looking for the cup", "approach object=cup standoff=0.29 lateral=-0.10"]),
 ])
 def test_each_intent_starts_with_its_acknowledgement(task: str, expected: list[str]) -> None:
     p = plan(task)
@@ -100,20 +100,23 @@ def test_task_intents_plan_like_the_task_text() -> None:
     assert steps(plan(json.dumps(intents))) == steps(plan(intents))
 
 
-def test_approach_stops_within_arm_reach_facing_the_object() -> None:
+def test_approach_stops_with_the_object_in_front_of_a_shoulder_facing_it() -> None:
     approach = plan("pick_up(bottle)").primitives()[1]
-    args = approach.skill_args
-    assert approach.name == "approach" and approach.skill == "navigate"
-    distance = math.hypot(4.01 - args["x"], 1.38 - args["y"])
-    assert distance == pytest.approx(0.33, abs=1e-3)                        # the G1's arm reaches ~0.42 m
-    assert args["yaw"] == pytest.approx(math.atan2(1.38 - args["y"], 4.01 - args["x"]), abs=0.01)
+    assert approach.name == "approach" and approach.skill == "approach"
+    assert approach.skill_args == {"object": "bottle", "standoff": 0.29, "lateral": -0.1}  # arm reach ~0.42 m
+    predicted = dict(approach.changes or [])["pose"]                          # where the planner expects it
+    yaw = predicted["yaw"]
+    dx, dy = 4.01 - predicted["x"], 1.38 - predicted["y"]                     # the bottle in the body frame:
+    ahead, left = dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw)
+    assert (ahead, left) == (pytest.approx(0.29, abs=1e-6), pytest.approx(-0.1, abs=1e-6))  # before the right shoulder
+    assert yaw == pytest.approx(math.atan2(1.38, 4.01), abs=0.01)             # looking from the entrance (0, 0)
 
 
 # -- fetch, bring, find ---------------------------------------------------------------------------------
 def test_fetch_a_known_object_goes_to_it_picks_it_and_puts_it_down_at_the_place() -> None:
     p = plan("fetch(bottle, workbench)")
     assert p.tasks[0].method == "known_location"
-    assert steps(p) == ["speak text=Fetching the bottle for the workbench", "navigate x=3.70 y=1.27 yaw=0.33",
+    assert steps(p) == ["speak text=Fetching the bottle for the workbench", "approach object=bottle standoff=0.29 lateral=-0.10",
                         "pick object=bottle", "navigate marker=workbench", "release"]
     assert p.state["held"] is None and p.state["at"] == "workbench"
     assert p.state["objects"]["bottle"] == {"x": 1.0, "y": -2.8, "z": 0.8}  # 0.4 m ahead of the robot
@@ -128,7 +131,7 @@ def test_fetch_what_is_already_in_hand_only_carries_it() -> None:
 def test_fetch_with_full_hands_puts_the_other_object_down_first() -> None:
     p = plan("fetch(bottle, workbench)", lab(held="cup"))
     assert p.tasks[0].method == "hands_full"
-    assert steps(p)[1:3] == ["release", "navigate x=3.70 y=1.27 yaw=0.33"]
+    assert steps(p)[1:3] == ["release", "approach object=bottle standoff=0.29 lateral=-0.10"]
 
 
 def test_fetch_an_object_remembered_at_a_marker_walks_there_and_looks_for_it() -> None:
@@ -137,7 +140,7 @@ def test_fetch_an_object_remembered_at_a_marker_walks_there_and_looks_for_it() -
         "speak text=Fetching the keys for the workbench",
         "navigate marker=kitchen",
         "find object=keys",                                                      # its position is known from now on
-        "navigate x=$world.objects.keys.x y=$world.objects.keys.y tolerance=0.33",  # read by the leaf at run time
+        "approach object=keys standoff=0.29 lateral=-0.10",                     # the leaf reads the position when it starts
         "pick object=keys",
         "navigate marker=workbench",
         "release",
@@ -159,10 +162,19 @@ def test_fetch_an_unknown_object_looks_around_in_steps_first() -> None:
 
 def test_bring_returns_to_where_the_command_was_given() -> None:
     p = plan("bring(cup)")
-    assert steps(p) == ["speak text=Bringing you the cup", "navigate x=0.76 y=-2.68 yaw=-1.29", "pick object=cup",
+    assert steps(p) == ["speak text=Bringing you the cup", "approach object=cup standoff=0.29 lateral=-0.10", "pick object=cup",
                         "navigate marker=entrance", "release", "speak text=Here is your cup."]
     spot = {"x": 2.0, "y": 1.0, "yaw": 0.5}
     assert steps(plan("bring(cup)", lab(speaker_at=spot)))[3] == "navigate x=2.00 y=1.00 yaw=0.50"
+
+
+def test_going_to_an_object_walks_up_to_it_looking_for_it_first_when_unknown() -> None:
+    known = plan("navigate_to_marker(bottle)")
+    assert known.tasks[0].method == "to_object"
+    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=-0.10"]
+    unknown = plan("navigate_to_marker(orange)")
+    assert [s.skill for s in unknown.primitives()][:2] == ["speak", "find"] and unknown.primitives()[-1].skill == "approach"
+    assert plan("navigate_to_marker(kitchen)").tasks[0].method == "walk"  # a marker is walked to, not approached
 
 
 def test_find_remembered_objects_directly_and_unknown_ones_by_looking_around() -> None:
@@ -170,7 +182,7 @@ def test_find_remembered_objects_directly_and_unknown_ones_by_looking_around() -
     p = plan("find(orange)")
     assert p.tasks[0].method == "look_around"
     assert [s.skill for s in p.primitives()] == ["speak", "find", "turn", "find", "turn", "find", "turn", "find",
-                                                 "navigate"]
+                                                 "approach"]
 
 
 # -- tour, greet, go_and_say, do_all ---------------------------------------------------------------------
@@ -230,9 +242,9 @@ def test_a_later_intent_that_cannot_follow_an_earlier_one_is_explained() -> None
 
 # -- impossible requests ---------------------------------------------------------------------------------
 def test_an_unknown_place_fails_with_a_suggestion() -> None:
-    assert failure_of("navigate_to_marker(kitchn)").splitlines()[-1] == (
+    assert (
         "    ✗ walk: place in markers is false (place='kitchn', markers={entrance, charging_dock, kitchen, bathroom, "
-        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)")
+        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)") in failure_of("navigate_to_marker(kitchn)").splitlines()
     assert "✗ known_location: place in markers is false (place='moon'" in failure_of("fetch(bottle, moon)")
     assert "visit(moon): no method applies" in failure_of("tour([station_1, moon])")
 

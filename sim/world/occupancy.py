@@ -22,7 +22,7 @@ import math
 from collections import deque
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -42,6 +42,7 @@ class Footprint:
     centre: tuple[float, float]
     radius: float | None = None
     polygon: tuple[tuple[float, float], ...] = ()
+    z_low: float = 0.0  # the geom's lowest point: a table top leaves room for feet below it
 
     def distance(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """Distance from points to the outline (0 inside)."""
@@ -88,11 +89,13 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         if gtype in (int(mujoco.mjtGeom.mjGEOM_CYLINDER), int(mujoco.mjtGeom.mjGEOM_CAPSULE)) and vertical:
             half = size[1] + (size[0] if gtype == int(mujoco.mjtGeom.mjGEOM_CAPSULE) else 0.0)
             if _blocks(pos[2] - half, pos[2] + half):
-                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0])))
+                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
+                                     z_low=float(pos[2] - half)))
             continue
         if gtype == int(mujoco.mjtGeom.mjGEOM_SPHERE):
             if _blocks(pos[2] - size[0], pos[2] + size[0]):
-                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0])))
+                out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
+                                     z_low=float(pos[2] - size[0])))
             continue
         # Anything else: the geom's own bounding box, turned into the world and projected.
         centre, half = model.geom_aabb[g, :3], model.geom_aabb[g, 3:]
@@ -101,7 +104,7 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         if not _blocks(corners[:, 2].min(), corners[:, 2].max()):
             continue
         hull = _convex_hull([(float(c[0]), float(c[1])) for c in corners])
-        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull)))
+        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull), z_low=float(corners[:, 2].min())))
     return out
 
 
@@ -137,10 +140,18 @@ def clearance(footprints: Sequence[Footprint], x: float, y: float) -> float:
     return float(min((fp.distance(px, py)[0] for fp in footprints), default=math.inf))
 
 
-def footprint_hits(footprints: Sequence[Footprint], x: float, y: float, radius: float) -> list[str]:
-    """Names of the obstacles a round footprint of ``radius`` at (x, y) overlaps."""
+def footprint_hits(footprints: Sequence[Footprint], x: float, y: float, radius: float,
+                   raised: tuple[float, float] | None = None) -> list[str]:
+    """Names of the obstacles a round footprint of ``radius`` at (x, y) overlaps. With ``raised``
+    = (height, radius), an obstacle whose lowest point is above ``height`` (a table top: the feet
+    go under it) is checked against that smaller radius (the body at that height) instead."""
     px, py = np.array([x]), np.array([y])
-    return [fp.name for fp in footprints if fp.distance(px, py)[0] < radius]
+    hits = []
+    for fp in footprints:
+        r = raised[1] if raised is not None and fp.z_low > raised[0] else radius
+        if fp.distance(px, py)[0] < r:
+            hits.append(fp.name)
+    return hits
 
 
 def _disc_dilate(mask: np.ndarray, radius_cells: int) -> np.ndarray:
@@ -297,9 +308,11 @@ class OccupancyGrid:
 
 def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]],
                  path_points: Sequence[tuple[float, float]], objects: Mapping[str, Mapping[str, float]],
-                 out_path: str | Path, scale: int = 4) -> Path:
+                 out_path: str | Path, scale: int = 4, memory: Sequence[Mapping[str, Any]] = ()) -> Path:
     """The map with what happened on it: obstacles (and their inflation), named markers with
-    their headings, the driven path (start green, end red) and the objects where they are."""
+    their headings, the driven path (start green, end red), the objects where they are, and the
+    spatial memory (``memory``: entries of a memory summary, drawn as rings sized by their
+    confidence, so where the robot *believes* things are can be compared with where they are)."""
     from PIL import Image, ImageDraw, ImageFont
 
     rows, cols = grid.shape
@@ -350,6 +363,13 @@ def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]]
         r = 0.05 * metre
         draw.rectangle([cx - r, cy - r, cx + r, cy + r], fill=(200, 30, 120))
         draw.text((cx + r + 2, cy + 1), label, fill=(150, 20, 90), font=font, stroke_width=2,
+                  stroke_fill=(255, 255, 255))
+    for entry in memory:
+        cx, cy = px(float(entry["x"]), float(entry["y"]))
+        r = (0.06 + 0.08 * max(0.0, min(1.0, float(entry.get("confidence", 1.0))))) * metre
+        draw.ellipse([cx - r, cy - r, cx + r, cy + r], outline=(0, 150, 170), width=max(2, scale // 2))
+        draw.text((cx + r + 2, cy - r - 2 * scale), f"{entry.get('id', entry.get('label', '?'))} "
+                  f"{float(entry.get('confidence', 1.0)):.2f}", fill=(0, 110, 130), font=font, stroke_width=2,
                   stroke_fill=(255, 255, 255))
     out_path = Path(out_path)
     out_path.parent.mkdir(parents=True, exist_ok=True)

@@ -32,6 +32,7 @@ class Frame:
     depth: np.ndarray | None  # (H, W) float32 metres along the optical axis
     intrinsics: dict[str, float]
     pose: dict[str, Any]
+    labels: np.ndarray | None = None  # (H, W) int16: index into the label names, -1 for nothing labelled
 
 
 def intrinsics(model: mujoco.MjModel, camera: int, width: int, height: int) -> dict[str, float]:
@@ -83,7 +84,10 @@ class Cameras:
             self._renderers[key] = renderer
         return renderer
 
-    def render(self, data: mujoco.MjData, camera: str | int, width: int, height: int, depth: bool = False) -> Frame:
+    def render(self, data: mujoco.MjData, camera: str | int, width: int, height: int, depth: bool = False,
+               geom_labels: np.ndarray | None = None) -> Frame:
+        """One frame; with ``geom_labels`` (label index per geom id, -1 for none) also the
+        renderer's segmentation mapped to those labels (the sim detector's ground truth pixels)."""
         cam = self.camera_id(camera)
         renderer = self._renderer(width, height)
         renderer.update_scene(data, camera=cam, scene_option=self.option)
@@ -96,12 +100,31 @@ class Cameras:
                 depth_image = renderer.render().astype(np.float32)
             finally:
                 renderer.disable_depth_rendering()
-        return Frame(rgb, depth_image, intrinsics(self.model, cam, width, height), camera_pose(data, cam))
+        labels = None
+        if geom_labels is not None:
+            renderer.enable_segmentation_rendering()
+            try:
+                renderer.update_scene(data, camera=cam, scene_option=self.option)
+                segmentation = renderer.render()
+            finally:
+                renderer.disable_segmentation_rendering()
+            labels = segment_labels(segmentation, geom_labels)
+        return Frame(rgb, depth_image, intrinsics(self.model, cam, width, height), camera_pose(data, cam), labels)
 
     def close(self) -> None:
         for renderer in self._renderers.values():
             renderer.close()
         self._renderers.clear()
+
+
+def segment_labels(segmentation: np.ndarray, geom_labels: np.ndarray) -> np.ndarray:
+    """MuJoCo's segmentation image (object id, object type per pixel) -> a label index image:
+    pixels showing a labelled geom get its label's index, everything else -1."""
+    ids, types = segmentation[:, :, 0], segmentation[:, :, 1]
+    is_geom = (types == int(mujoco.mjtObj.mjOBJ_GEOM)) & (ids >= 0) & (ids < len(geom_labels))
+    labels = np.full(ids.shape, -1, dtype=np.int16)
+    labels[is_geom] = geom_labels[ids[is_geom]]
+    return labels
 
 
 def save_png(rgb: np.ndarray, path: str | Path) -> Path:

@@ -46,6 +46,7 @@ from .scene import MAPS_DIR, Scene, build_scene
 
 READ_CHUNK = 1 << 16
 FOOTPRINT_RADIUS = 0.2  # the base's own footprint (legs and feet) for the collision flag (m)
+RAISED = (0.45, 0.12)  # above knee height (m), e.g. a table top, only the hips and torso (radius m) can touch
 PERSON_HEIGHT = 1.7
 PERSON_PARK = (-4.0, -6.0, -3.0)  # outside the walls and under the floor: out of every view
 PATH_LOG_STEP = 0.02  # metres between logged points of the driven path
@@ -163,7 +164,7 @@ class World:
         row, col = self.grid.world_to_cell(b.x, b.y)
         hit = not self.grid.inside(row, col) or bool(self._footprint_mask[row, col])
         if hit:  # the grid is coarse: confirm with the exact outlines
-            self.collision = footprint_hits(self._footprints, b.x, b.y, FOOTPRINT_RADIUS)
+            self.collision = footprint_hits(self._footprints, b.x, b.y, FOOTPRINT_RADIUS, RAISED)
             self.collided = self.collided or bool(self.collision)
         else:
             self.collision = []
@@ -202,16 +203,21 @@ class World:
             out[label] = {"x": _r(x), "y": _r(y), "z": _r(z)}
         return out
 
-    def cmd_state(self, args: dict[str, Any]) -> dict[str, Any]:
+    def localised_base(self) -> dict[str, float]:
+        """The base pose as localisation reports it (noisy with ``--loc-noise``)."""
         b = self.base
         x, y, yaw = b.x, b.y, b.yaw
         if self.loc_noise:
             nx, ny, nyaw = self.rng.normal(0.0, LOC_NOISE)
             x, y, yaw = x + nx, y + ny, wrap(yaw + nyaw)
+        return {"x": _r(x), "y": _r(y), "yaw": _r(yaw, 5)}
+
+    def cmd_state(self, args: dict[str, Any]) -> dict[str, Any]:
+        b = self.base
         hand_points = {side: [_r(v) for v in self.data.site_xpos[site]] for side, site in self.scene.hand_sites.items()}
         return {
             "t": _r(self.t),
-            "base": {"x": _r(x), "y": _r(y), "yaw": _r(yaw, 5)},
+            "base": self.localised_base(),
             "base_velocity": {"vx": _r(b.vx), "vy": _r(b.vy), "wz": _r(b.wz)},
             "base_status": b.status,
             "arrival_error": b.arrival_error,
@@ -383,32 +389,57 @@ class World:
                 raise WorldError("bad_request", f"{cmd}: {key!r} must be an integer in 1..{limit}, got {value!r}")
         return width, height
 
+    def object_labels(self) -> tuple[list[str], np.ndarray]:
+        """The objects' labels (sorted) and, per geom id, the index of the label it belongs to
+        (-1: not an object), for the segmentation the sim detector starts from."""
+        names = sorted(self.scene.objects)
+        body_label = np.full(self.model.nbody, -1, dtype=np.int16)
+        for index, name in enumerate(names):
+            body_label[self.scene.objects[name].body] = index
+        return names, body_label[self.model.geom_bodyid]
+
     def cmd_render(self, args: dict[str, Any]) -> dict[str, Any]:
         cmd = "render"
-        a.only_known(args, ("camera", "width", "height", "depth", "path", "depth_path"), cmd)
+        a.only_known(args, ("camera", "width", "height", "depth", "path", "depth_path", "labels", "labels_path"), cmd)
         camera = a.string(args, "camera", cmd, default="head_camera")
         if camera not in self.scene.cameras:
             raise WorldError("not_found", f"no camera {camera!r}; cameras: {', '.join(sorted(self.scene.cameras))}")
         width, height = self._size(args, cmd, (640, 480))
-        depth = args.get("depth", False)
-        if not isinstance(depth, bool):
-            raise WorldError("bad_request", f"render: 'depth' must be true or false, got {depth!r}")
-        self._renders += 1
-        path = Path(a.string(args, "path", cmd, default=str(self.run_dir / f"render_{self._renders}.png")))
-        if path.suffix.lower() != ".png":
-            raise WorldError("bad_request", f"render: 'path' must end in .png, got {str(path)!r}")
+        flags = {}
+        for key in ("depth", "labels"):
+            flags[key] = args.get(key, False)
+            if not isinstance(flags[key], bool):
+                raise WorldError("bad_request", f"render: {key!r} must be true or false, got {flags[key]!r}")
+        path = Path(a.string(args, "path", cmd, default=str(self.run_dir / f"render_{self._renders + 1}.png")))
+        if path.suffix.lower() not in (".png", ".npy"):
+            raise WorldError("bad_request", f"render: 'path' must end in .png (or .npy for raw pixels), got {str(path)!r}")
         depth_path = Path(a.string(args, "depth_path", cmd, default=str(path.with_name(path.stem + "_depth.npy"))))
+        labels_path = Path(a.string(args, "labels_path", cmd, default=str(path.with_name(path.stem + "_labels.npy"))))
+        for key, extra in (("depth_path", depth_path), ("labels_path", labels_path)):
+            if extra.suffix.lower() != ".npy":
+                raise WorldError("bad_request", f"render: {key!r} must end in .npy, got {str(extra)!r}")
+        self._renders += 1
         self.sync_pose()
-        frame = self.cameras.render(self.data, camera, width, height, depth)
-        save_png(frame.rgb, path)
+        names, geom_labels = self.object_labels() if flags["labels"] else ([], None)
+        frame = self.cameras.render(self.data, camera, width, height, flags["depth"], geom_labels)
+        if path.suffix.lower() == ".npy":  # raw pixels: no PNG encoding, for perception at camera rate
+            path.parent.mkdir(parents=True, exist_ok=True)
+            np.save(path, frame.rgb)
+        else:
+            save_png(frame.rgb, path)
         result: dict[str, Any] = {"t": _r(self.t), "camera": camera, "width": width, "height": height,
                                   "path": str(path), "depth_path": None,
                                   "intrinsics": {k: _r(v, 4) for k, v in frame.intrinsics.items()},
-                                  "pose": frame.pose}
+                                  "pose": frame.pose, "base": self.localised_base()}
         if frame.depth is not None:
             depth_path.parent.mkdir(parents=True, exist_ok=True)
             np.save(depth_path, frame.depth)
             result["depth_path"] = str(depth_path)
+        if frame.labels is not None:
+            labels_path.parent.mkdir(parents=True, exist_ok=True)
+            np.save(labels_path, frame.labels)
+            result["labels_path"] = str(labels_path)
+            result["label_names"] = names
         return result
 
     def start_recording(self, path: str, fps: float, camera: str = "chase", width: int | None = None,

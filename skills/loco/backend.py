@@ -38,6 +38,27 @@ class RelativeGoal:
 
 
 @dataclass(frozen=True)
+class ApproachGoal:
+    """Stand so that the point (x, y) is ``standoff`` metres ahead of the robot's base and
+    ``lateral`` metres to its left (negative: right), i.e. in front of one shoulder, where an arm
+    reaches furthest: how the robot walks up to an object to pick it or look at it. A backend may
+    mirror ``lateral`` when that side is blocked. Backends turn it into a :class:`MapGoal` before
+    walking (:meth:`LocoBackend.approach_pose`); the sim and the robot pick a free spot on their map."""
+
+    x: float
+    y: float
+    standoff: float
+    lateral: float = 0.0
+
+
+def approach_stand(goal: ApproachGoal, heading: float, lateral: float | None = None) -> MapGoal:
+    """The base pose with heading ``heading`` that puts the point at (standoff, lateral) in the body frame."""
+    side = goal.lateral if lateral is None else lateral
+    cos, sin = math.cos(heading), math.sin(heading)
+    return MapGoal(goal.x - goal.standoff * cos + side * sin, goal.y - goal.standoff * sin - side * cos, heading)
+
+
+@dataclass(frozen=True)
 class NavigateGoal:
     target: MapGoal | RelativeGoal
     marker: str | None
@@ -52,6 +73,14 @@ def goal_pose(start: Pose, target: MapGoal | RelativeGoal) -> tuple[float, float
     cos, sin = math.cos(start.yaw), math.sin(start.yaw)
     return (start.x + target.dx * cos - target.dy * sin, start.y + target.dx * sin + target.dy * cos,
             start.yaw + target.dyaw)
+
+
+def standoff_on_line(here: Pose, goal: ApproachGoal) -> MapGoal:
+    """The stand-off on the side of the point that faces ``here``: heading along the line from
+    ``here`` to the point (straight on when the robot stands on the point itself)."""
+    dx, dy = goal.x - here.x, goal.y - here.y
+    heading = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-6 else here.yaw
+    return approach_stand(goal, heading)
 
 
 class LocoBackend(Backend):
@@ -76,16 +105,31 @@ class LocoBackend(Backend):
     def state(self) -> dict[str, Any]:
         return {"pose": self.pose().to_dict()}
 
+    def approach_pose(self, goal: ApproachGoal) -> MapGoal:
+        """Where to stand for an approach. Without a map: on the side of the point that faces the
+        robot (:func:`standoff_on_line`). Map-aware backends override this."""
+        here = self.pose()
+        return standoff_on_line(here, goal)
+
     def commands(self) -> dict[str, Handler]:
         return {"navigate": self._navigate_command, "turn": self._turn_command}
 
     def _navigate_command(self, args: dict[str, Any]) -> Activity:
         cmd = "navigate"
-        a.only_known(args, ("pose", "relative", "marker", "tolerance", "yaw_tolerance"), cmd)
-        if a.one_of(args, ("pose", "relative"), cmd) == "pose":
+        a.only_known(args, ("pose", "relative", "approach", "marker", "tolerance", "yaw_tolerance"), cmd)
+        form = a.one_of(args, ("pose", "relative", "approach"), cmd)
+        if form == "approach":
+            spot = a.mapping(args, "approach", cmd)
+            a.only_known(spot, ("x", "y", "standoff", "lateral"), "navigate approach")
+            target: MapGoal | RelativeGoal = self.approach_pose(ApproachGoal(
+                a.number(spot, "x", "navigate approach"), a.number(spot, "y", "navigate approach"),
+                a.number(spot, "standoff", "navigate approach", minimum=0.0),
+                a.number(spot, "lateral", "navigate approach", default=0.0),
+            ))
+        elif form == "pose":
             pose = a.mapping(args, "pose", cmd)
             a.only_known(pose, ("x", "y", "yaw"), "navigate pose")
-            target: MapGoal | RelativeGoal = MapGoal(
+            target = MapGoal(
                 a.number(pose, "x", "navigate pose"), a.number(pose, "y", "navigate pose"),
                 a.optional_number(pose, "yaw", "navigate pose"),
             )

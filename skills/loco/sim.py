@@ -8,7 +8,9 @@ The daemon watches the world's state: arrival ends the walk, a block that lasts 
 
 Options: ``world`` (socket path, required), ``map`` (map YAML, default the lab's),
 ``robot_radius`` (0.3 m), ``relative_clearance`` (0.15 m: margin for body-relative moves, which
-are driven straight without a global plan, like the robot's odometry moves), ``max_speed`` (0.6 m/s), ``blocked_timeout`` (20 s), ``poll`` (0.1 s).
+are driven straight without a global plan, like the robot's odometry moves, and for docking),
+``max_speed`` (0.6 m/s), ``blocked_timeout`` (20 s), ``poll`` (0.1 s), ``approach_slack`` (0.1 m:
+how much further than asked an approach may stand when furniture blocks every closer spot).
 """
 
 from __future__ import annotations
@@ -22,7 +24,8 @@ from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.sim.world.client import WorldClient, WorldError
 from stuart_bt.world import Pose
 
-from .backend import LocoBackend, NavigateGoal, RelativeGoal, goal_pose
+from .backend import (ApproachGoal, LocoBackend, MapGoal, NavigateGoal, RelativeGoal, approach_stand, goal_pose,
+                      standoff_on_line)
 from .dry import wrap
 from .planner import PlanningError, load_map, path_length, plan
 
@@ -106,6 +109,7 @@ class SimLoco(LocoBackend):
         self.near_grid = load_map(map_file, float(options.get("relative_clearance", 0.15)))
         self.max_speed = float(options.get("max_speed", 0.6))
         self.blocked_timeout = float(options.get("blocked_timeout", 20.0))
+        self.approach_slack = float(options.get("approach_slack", 0.10))
         self.poll_period = float(options.get("poll", 0.1))
         self._state: dict[str, Any] = {}
         self.refresh()
@@ -155,6 +159,35 @@ class SimLoco(LocoBackend):
         if not self.near_grid.segment_free(snapped, (gx, gy)):
             raise PlanningError(f"({gx:.2f}, {gy:.2f}) is too close to an obstacle to approach")
         return [*waypoints[:-1], snapped, (gx, gy)]
+
+    def approach_pose(self, goal: ApproachGoal) -> MapGoal:
+        """A free spot to stand at for an approach, that the robot can walk to.
+
+        Furniture decides the side: headings are tried from the one looking straight from the
+        robot at the point, then further round it, alternating sides, in 15 degree steps; at each,
+        the point in front of the asked shoulder first, then of the other one. A spot must leave the
+        docking clearance free and have a plan from here. Only when every heading is blocked does
+        the stand-off grow, in 5 cm steps up to ``approach_slack`` metres, before the approach fails."""
+        start = Pose.from_dict(self.refresh()["base"])
+        facing = standoff_on_line(start, goal).yaw
+        headings = [facing + math.radians(15.0 * k * sign) for k in range(13) for sign in ((1,) if k == 0 else (1, -1))]
+        sides = (goal.lateral, -goal.lateral) if goal.lateral else (0.0,)
+        extra = 0.0
+        while extra <= self.approach_slack + 1e-9:
+            wider = ApproachGoal(goal.x, goal.y, goal.standoff + extra, goal.lateral)
+            for heading in headings:
+                for side in sides:
+                    spot = approach_stand(wider, heading, side)
+                    if not self.near_grid.free(*self.near_grid.cell(spot.x, spot.y)):
+                        continue
+                    try:
+                        self._plan_with_final_approach(start, spot.x, spot.y)
+                    except PlanningError:
+                        continue
+                    return MapGoal(spot.x, spot.y, wrap(heading))
+            extra += 0.05
+        raise DaemonError("unreachable", f"no free spot to stand within {goal.standoff + self.approach_slack:.2f} m "
+                          f"of ({goal.x:.2f}, {goal.y:.2f})")
 
     def turn(self, angle: float) -> Activity:
         start = Pose.from_dict(self.refresh()["base"])

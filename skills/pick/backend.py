@@ -1,4 +1,4 @@
-"""What every manipulation backend offers: pick an object, release it, find it.
+"""What every manipulation backend offers: pick an object, release it (finding it is the vision daemon's).
 
 The robot's pose comes with every request (the loco daemon owns it; this daemon does not move
 the base), so reach checks happen here before any arm moves.
@@ -20,33 +20,32 @@ class PickBackend(Backend):
     family = "pick"
 
     @abstractmethod
-    def pick(self, label: str, arm: str, robot_pose: Pose) -> Activity:
-        """Grasp and lift the object; the result is ``{"object", "arm", "position"}``."""
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
+        """Grasp and lift the object (at ``position``, map frame, when perception placed it;
+        else where the backend knows it to be); the result is ``{"object", "arm", "position"}``."""
 
     @abstractmethod
     def release(self, arm: str, robot_pose: Pose) -> Activity:
         """Put down what ``arm`` ('auto': whichever) holds; the result says where it went."""
 
-    @abstractmethod
-    def find(self, label: str, robot_pose: Pose) -> Activity:
-        """Locate an object; the result is ``{"object", "position", "distance"}``."""
-
     def commands(self) -> dict[str, Handler]:
-        return {"pick": self._pick_command, "release": self._release_command, "find": self._find_command}
+        return {"pick": self._pick_command, "release": self._release_command}
 
     def _pick_command(self, args: dict[str, Any]) -> Activity:
-        a.only_known(args, ("object", "arm", "robot_pose"), "pick")
+        a.only_known(args, ("object", "arm", "robot_pose", "position"), "pick")
+        position = None
+        if args.get("position") is not None:
+            spot = args["position"]
+            if not isinstance(spot, dict):
+                raise a.bad("pick", f"'position' must be {{x, y, z}}, got {spot!r}")
+            position = {k: a.number(spot, k, "pick position") for k in ("x", "y", "z")}
         return self.pick(_label(args, "pick"), a.string(args, "arm", "pick", default="auto", choices=ARMS),
-                         a.pose(args, "robot_pose", "pick"))
+                         a.pose(args, "robot_pose", "pick"), position)
 
     def _release_command(self, args: dict[str, Any]) -> Activity:
         a.only_known(args, ("arm", "robot_pose"), "release")
         return self.release(a.string(args, "arm", "release", default="auto", choices=ARMS),
                             a.pose(args, "robot_pose", "release"))
-
-    def _find_command(self, args: dict[str, Any]) -> Activity:
-        a.only_known(args, ("object", "robot_pose"), "find")
-        return self.find(_label(args, "find"), a.pose(args, "robot_pose", "find"))
 
 
 def _label(args: dict[str, Any], cmd: str) -> str:

@@ -27,9 +27,7 @@ PICK_PHASES = ("pre_grasp", "descend", "close", "lift")
 PICK_SECONDS = 6.0
 RELEASE_PHASES = ("lower", "open", "retract")
 RELEASE_SECONDS = 3.0
-FIND_SECONDS = 1.5
 PLACE_AHEAD = 0.4  # metres in front of the robot where a released object lands
-HAND_HEIGHT = 1.0  # where a held object is, above the floor
 
 
 @dataclass(frozen=True)
@@ -99,23 +97,6 @@ class Place(Phased):
         return {"object": label, "arm": arm, "position": position.to_dict()}
 
 
-class Search(TimedActivity):
-    resource = "camera"
-
-    def __init__(self, label: str, position: Position, distance: float) -> None:
-        super().__init__(FIND_SECONDS)
-        self._result = {"object": label, "position": position.to_dict(), "distance": round(distance, 4)}
-
-    def report(self, now: float) -> dict[str, Any]:
-        return {"fraction": round(self.fraction(now), 3)}
-
-    def finish(self, now: float) -> dict[str, Any]:
-        return self._result
-
-    def cancel(self, now: float) -> None:
-        return None
-
-
 class DryPick(PickBackend):
     name = "dry"
 
@@ -130,7 +111,7 @@ class DryPick(PickBackend):
         self.held_arm: str | None = None
         self._held_from: Position | None = None  # where the held object was picked up
 
-    def pick(self, label: str, arm: str, robot_pose: Pose) -> Grasp:
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Grasp:
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
@@ -147,12 +128,6 @@ class DryPick(PickBackend):
         if self.held is None or arm not in ("auto", self.held_arm):
             raise DaemonError("not_holding", f"the {'robot' if arm == 'auto' else arm + ' arm'} holds nothing")
         return Place(self, robot_pose)
-
-    def find(self, label: str, robot_pose: Pose) -> Search:
-        if label == self.held:
-            return Search(label, Position(robot_pose.x, robot_pose.y, HAND_HEIGHT), 0.0)
-        position = self._known(label)
-        return Search(label, position, position.distance_from(robot_pose))
 
     def take(self, label: str, arm: str) -> Position:
         """A grasp succeeded: the object leaves its table for the hand."""

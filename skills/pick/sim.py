@@ -1,7 +1,7 @@
 """Simulated manipulation: IK-planned grasps played on the sim's arms, judged by the physics.
 
-A pick is planned completely before anything moves: the object's position (from the world,
-until perception feeds the memory) goes into the torso frame, both the reach pre-check and the
+A pick is planned completely before anything moves: the object's position (where perception
+placed it when the request carries one, else the world's) goes into the torso frame, both the reach pre-check and the
 IK solver (``pin`` or ``placo``) must succeed for the pre-grasp (10 cm above and 8 cm in front,
 the original system's approach), the grasp and the lift; otherwise the pick fails with
 ``unreachable`` and the arm never moves. Then: approach, descend, close the hand, lift, and the
@@ -38,7 +38,6 @@ LIFT = np.array([0.0, 0.0, 0.10])
 DEFAULT_REST_HEIGHT = 0.1  # m: object origin above its surface, when it was not picked here
 PLACE_CLEARANCE = 0.01  # m: let go this far above the surface
 PLACE_REACH_IN = (0.06, 0.03, 0.0)  # m: put things down further in than carried, if reachable
-FIND_RANGE = 8.0  # m: the sim's stand-in for "in view" until perception lands
 
 
 def world_to_torso(p: np.ndarray, base: Pose) -> np.ndarray:
@@ -135,13 +134,15 @@ class SimPick(PickBackend):
             raise DaemonError("backend_error", f"world {cmd}: {e}") from None
 
     # -- pick ------------------------------------------------------------------------------------
-    def pick(self, label: str, arm: str, robot_pose: Pose) -> Activity:
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
         state = self.call("state")
         if any(state.get("held", {}).values()):
             held = next(v for v in state["held"].values() if v)
             raise DaemonError("already_holding", f"already holding {held!r}; release it first")
         base = Pose.from_dict(state["base"])
         obj = _object(state, label)
+        if position is not None:  # aim where the camera saw it; the physics still judges the grasp
+            obj = {**obj, **position}
         # grasp the upper body of the object, where a hand closes around a bottle or a cup
         target = world_to_torso(np.array([obj["x"], obj["y"], obj["z"] + self.grasp_dz]), base)
         side = ("left" if target[1] >= 0 else "right") if arm == "auto" else arm
@@ -196,7 +197,7 @@ class SimPick(PickBackend):
         self.active.confirm()
         return _Instant({"confirmed": True})
 
-    # -- release and find ---------------------------------------------------------------------------
+    # -- release ---------------------------------------------------------------------------
     def release(self, arm: str, robot_pose: Pose) -> Activity:
         """Put the held object down on the surface under it (table, bench), planned like a pick:
         the lowering target must pass the reach check and IK before the arm moves, else the
@@ -233,16 +234,6 @@ class SimPick(PickBackend):
             ("retract", "arm_trajectory", {"points": [{"t": 1.5, "joints": neutral}], "id": "retract"}, 1.5),
         ]
         return Phased(self, phases, {"object": label, "arm": side, "releasing": True, "surface": surface["geom"]})
-
-    def find(self, label: str, robot_pose: Pose) -> Activity:
-        state = self.call("state")
-        obj = _object(state, label)
-        base = Pose.from_dict(state["base"])
-        distance = math.hypot(obj["x"] - base.x, obj["y"] - base.y)
-        if distance > FIND_RANGE:
-            raise DaemonError("not_found", f"no {label} in view (nearest is {distance:.1f} m away)")
-        position = {k: round(float(obj[k]), 4) for k in ("x", "y", "z")}
-        return _Timed(1.0, {"object": label, "position": position, "distance": round(distance, 3)})
 
     def state(self) -> dict[str, Any]:
         return {"active": self.active.result.get("object") if self.active else None,

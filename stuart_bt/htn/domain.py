@@ -31,7 +31,7 @@ from typing import Any
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
 from .. import expr as bbexpr
-from ..catalogue import LEAVES
+from ..catalogue import LEAVES, SKILLS  # primitives bind to skill leaves (daemon leaves, wait, stop)
 from ..suggest import did_you_mean
 from ..tree import yaml_source as ys
 from ..tree.errors import ErrorLog, TreeLoadError
@@ -40,7 +40,6 @@ from ..world import WorldState
 from .hooks import Hook, HookRegistry
 from .state import State
 
-SKILLS = ("navigate", "pick", "release", "find", "speak", "gesture", "turn", "wait", "stop")
 PARAM_TYPES: dict[str, str] = {
     "place": "a marker name",
     "object": "an object label",

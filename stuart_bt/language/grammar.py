@@ -37,7 +37,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 from .intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
-from .numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity
+from .numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity, word_value
 
 Spec = tuple[str, str, float, float, float]  # (action, target, x, y, yaw): an intent without raw_text
 Result = tuple[list[Spec], int] | None
@@ -182,8 +182,7 @@ CONNECTORS: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("after", "which"), ("afterwards",), ("afterward",), ("finally",), ("lastly",), ("first",), ("firstly",),
     ("first", "of", "all"), ("secondly",), ("thirdly",), ("next",), ("then", "after", "that"), ("once", "done"),
     ("when", "done"), ("once", "there"), ("when", "there"), ("once", "you", "are", "there"),
-    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "arrive"),
-    ("once", "you", "arrive"), ("when", "you", "are", "there"), ("when", "youre", "there"),
+    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "are", "there"), ("when", "youre", "there"),
     ("once", "you", "get", "there"), ("when", "youre", "done"), ("once", "youre", "done"),
     ("when", "you", "are", "done"), ("once", "youve", "done", "that"), ("when", "youve", "done", "that"),
     ("once", "thats", "done"), ("when", "thats", "done"), ("followed", "by"), ("and", "followed", "by"),
@@ -284,7 +283,11 @@ TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "f
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
                         "carry", "get", "hand", "pass", "give", "snatch", "obtain", "gather", "seize", "acquire",
                         "deliver", "pluck", "procure", "nab", "raise"})
-FIND_VERBS = frozenset({"find", "locate", "spot", "seek", "detect", "search", "look", "hunt", "scan", "track"})
+FIND_VERBS = frozenset({"find", "locate", "spot", "seek", "detect", "search", "look", "hunt", "scan", "track",
+                        "check"})
+# a find verb said as a noun after a light verb: "have a look for", "take a quick look around for"
+FIND_NOUNS = frozenset({"look", "search", "hunt", "scan", "check", "peek", "peep", "glance"})
+FIND_NOUN_LEADS = frozenset({"have", "take", "do", "give", "make"})
 STOP_VERBS = frozenset({"stop", "halt", "freeze", "pause", "cancel", "abort", "wait", "stay", "quit", "cease",
                         "stand", "hold", "whoa", "woah", "enough", "never", "forget", "cut", "terminate", "end",
                         "interrupt", "chill", "hang", "desist", "emergency", "e", "brake", "kill", "break", "wo"})
@@ -303,7 +306,7 @@ STRONG_VERBS = frozenset({"go", "turn", "move", "walk", "head", "pick", "grab", 
 # a verb followed by one of its particles starts a new command inside a noun phrase ("... the
 # kitchen look for the apple"); as a pair these are not read as nouns ("look" alone may be)
 VERB_PARTICLES = frozenset({
-    ("look", "for"), ("search", "for"), ("hunt", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
+    ("look", "for"), ("search", "for"), ("hunt", "for"), ("check", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
     ("step", "forward"), ("hold", "on"), ("hang", "on"), ("wait", "there"), ("wait", "for"), ("stay", "there"),
     ("take", "a"), ("turn", "around"), ("spin", "around"), ("face", "the"), ("shake", "hands"),
     ("give", "me"), ("hand", "me"), ("bring", "me"), ("get", "me"), ("fetch", "me"), ("grab", "me"),
@@ -394,9 +397,9 @@ _NUMBER_PIECE = re.compile(r"\d+(?:[.,]\d+)?[^\W_]*|[^\W\d_][^\W_]*(?:'[^\W_]+)*
 def tokenize(text: str) -> Tokens:
     """Lower-case tokens of ``text``. Punctuation that separates clauses (``. , ; ! ? &``) is a
     token, other symbols are spaces; apostrophes are dropped ("let's" -> "lets": recognisers write
-    both); number-unit runs are split ("1.5m"); hesitations ("um", "uh") and immediate repeats
-    ("the the") are removed; ing-forms of known verbs become the verb ("turning" -> "turn"). At
-    most MAX_TOKENS tokens are read."""
+    both); number-unit runs are split ("1.5m"); hesitations ("um", "uh"; "mm" unless a number is
+    before it: "500 mm") and immediate repeats ("the the") are removed; ing-forms of known verbs
+    become the verb ("turning" -> "turn"). At most MAX_TOKENS tokens are read."""
     low = text.lower()
     if len(low) != len(text):  # a few characters change length in lower(): keep offsets right
         low = "".join(c.lower() if len(c.lower()) == 1 else c for c in text)
@@ -414,7 +417,9 @@ def tokenize(text: str) -> Tokens:
                 t = t.replace("'", "")
                 if not t:
                     continue
-            if t in DISFLUENCIES or (t == last and t not in HARD_STOPS and t != ","):
+            if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
+                continue  # "um"; but "500 mm" is a unit, not a hum
+            if t == last and t not in HARD_STOPS and t != ",":
                 continue
             c = t[0]
             if "0" <= c <= "9":
@@ -457,6 +462,7 @@ class _State:
     last_place: str = ""
     topic: str = ""  # a bare noun phrase said before the command ("the kitchen, go there")
     first: bool = True
+    subordinate: bool = False  # reading "when you ...": "you" is the subject, so no ellipsis
 
     def at(self, i: int) -> str:
         return self.toks[i] if i < self.n else ""
@@ -622,7 +628,7 @@ _NUMBER_STARTS = frozenset({
     "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
     "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
     "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
-    "couple", "few", "zero", "full", "complete", "whole", "pair", "pi",
+    "couple", "few", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
 })
 
 
@@ -885,29 +891,32 @@ def _pick(s: _State, i: int) -> Result:
     return out, e
 
 
-def _find(s: _State, i: int) -> Result:
-    """find / locate / look for / search for ...: find; "search the kitchen for the cup" goes
-    to the kitchen first. ``None`` for "look left", "find out ..."."""
+def _find(s: _State, i: int, verb: str = "") -> Result:
+    """find / locate / look for / search for / check for ...: find; "search the kitchen for the
+    cup" goes to the kitchen first. ``None`` for "look left", "find out ...". ``verb`` overrides
+    the word at ``i`` (a noun read as a verb: "have a peek for ...")."""
     toks, n = s.toks, s.n
-    verb = toks[i]
+    verb = verb or toks[i]
     j = i + 1
     area: str | None = None
-    if verb in ("look", "hunt", "scan", "search", "seek", "track"):
+    if verb in ("look", "hunt", "scan", "search", "seek", "track", "check"):
         while s.at(j) in ("around", "about", "out", "everywhere", "all", "over", "round"):
             j += 1
         if s.at(j) == "for":
             j += 1
-        elif verb in ("search", "scan"):
+        elif verb in ("search", "scan", "check"):
+            if s.at(j) in ("in", "inside", "through", "of"):
+                j += 1  # "search in the kitchen for ...", "have a search of the kitchen for ..."
             words, e = _np(s, j)
             area = _place(s, words)
             if area is None:
                 return None
-            if s.at(e) != "for":
-                return [(FIND, area, 0.0, 0.0, 0.0)], e
+            if s.at(e) != "for":  # "search the kitchen": a place to search; "check the kitchen": vague
+                return ([(FIND, area, 0.0, 0.0, 0.0)], e) if verb != "check" else None
             j = e + 1
         elif verb == "track" and s.at(j) == "down":
             j += 1
-        elif verb in ("look", "hunt", "seek"):
+        elif verb in ("look", "hunt", "seek", "check"):
             return None
     elif verb == "find":
         if s.at(j) == "out":
@@ -935,6 +944,27 @@ def _find(s: _State, i: int) -> Result:
         out.append((NAVIGATE, area, 0.0, 0.0, 0.0))
     out.append((FIND, target, 0.0, 0.0, 0.0))
     return out, e
+
+
+def _find_noun(s: _State, i: int) -> Result:
+    """A light verb with the noun of a find verb: "have a look for the keys", "take a quick look
+    around for the cup", "do a search for the bottle": read as that find verb. ``None`` when no
+    such noun follows ("take a look at this" has no "for": no object to find)."""
+    k = i + 1
+    if s.at(k) not in ("a", "an", "another"):
+        return None
+    k += 1
+    if s.at(k) in ("quick", "little", "good", "proper", "careful", "fast", "short"):
+        k += 1
+    if s.at(k) not in FIND_NOUNS:
+        return None
+    m = k + 1
+    while s.at(m) in ("around", "about", "round"):
+        m += 1
+    if s.at(m) == "for":
+        return _find(s, k, "look")
+    # "have a search of the kitchen for the cup", "take a look around the kitchen for the cup"
+    return _find(s, m - 1 if s.at(m) in ("of", "in", "inside", "through") else k, "check")
 
 
 def _way_to(s: _State, m: int) -> Result:
@@ -1104,6 +1134,8 @@ def _do(s: _State, i: int) -> Result:
     toks, n = s.toks, s.n
     verb = toks[i]
     j = i + 1
+    if verb in FIND_NOUN_LEADS and (got := _find_noun(s, i)) is not None:
+        return got
     if verb == "take" and s.at(j) in ("me", "us", "him", "her", "them") and s.at(j + 1) in TO_WORDS:
         words, e = _np(s, j + 2)
         target = _place(s, words)
@@ -1122,7 +1154,7 @@ def _do(s: _State, i: int) -> Result:
                 target = _place(s, words)
                 return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e + 1) if target else None
             return None
-    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "the", "our"):
+    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "the", "our", "you"):
         if s.at(j) in ("the", "our") and s.at(j + 1) in ("guests", "visitors", "kids", "children", "audience",
                                                          "crowd", "people", "group", "class", "team"):
             j += 2
@@ -1207,6 +1239,7 @@ _DISPATCH["raise"] = _gesture
 _DISPATCH["lift"] = _pick
 for _v in GUIDE_VERBS:
     _DISPATCH[_v] = _guide
+_DISPATCH["have"] = _find_noun  # "have a look for ..." (and nothing else: "have a seat")
 
 
 STOP_PHRASES: tuple[tuple[str, ...], ...] = (
@@ -1292,6 +1325,33 @@ def _request(s: _State, i: int) -> Result:
     return ([(PICK, target, 0.0, 0.0, 0.0)], e) if target else None
 
 
+# the speaker as the subject of a gesture the robot shares: "let me shake your hand", "can I hug
+# you", "may we give you a high five" ask the robot for that gesture; other "can I ..." are
+# questions about the speaker ("can I go to the kitchen?")
+SPEAKER_OPENERS: tuple[tuple[str, ...], ...] = (
+    ("let", "me"), ("can", "i"), ("could", "i"), ("may", "i"), ("can", "we"), ("could", "we"), ("may", "we"))
+_SPEAKER_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
+for _o in SPEAKER_OPENERS:
+    _SPEAKER_BY_FIRST[_o[0]] = _SPEAKER_BY_FIRST.get(_o[0], ()) + (_o,)
+RECIPROCAL = frozenset({"hug", "shake hand", "high five"})  # gestures made with someone
+
+
+def _reciprocal(s: _State, i: int) -> Result:
+    """ "let me shake your hand" / "can I give you a hug": the robot's half of a shared gesture."""
+    p = s.phrase_at(i, _SPEAKER_BY_FIRST)
+    if p is None:
+        return None
+    j = i + len(p)
+    while s.at(j) in ("please", "just"):
+        j += 1
+    if j >= s.n or (s.toks[j] not in GESTURE_VERBS and s.toks[j] not in LIGHT_VERBS and s.toks[j] != "high"):
+        return None
+    got = _clause(s, j)
+    if got is None or any(a != GESTURE or tg not in RECIPROCAL for a, tg, *_ in got[0]):
+        return None
+    return got
+
+
 def _opens_conversation(s: _State, i: int) -> bool:
     """Whether the clause at ``i`` opens like a question or statement (so the sentence is
     conversation to its end): wh-words, auxiliaries, subjects, wishes ("would you like")."""
@@ -1314,6 +1374,8 @@ def _clause(s: _State, i: int) -> Result:
     phrase continuing the clause before)."""
     toks, n = s.toks, s.n
     if toks[i] in _REQUEST_BY_FIRST and (got := _request(s, i)) is not None:
+        return got
+    if toks[i] in _SPEAKER_BY_FIRST and (got := _reciprocal(s, i)) is not None:
         return got
     if toks[i] in _WISH_BY_FIRST and s.phrase_at(i, _WISH_BY_FIRST) is not None:
         return None
@@ -1386,7 +1448,8 @@ def _verbless(s: _State, i: int) -> Result:
             if got is not None and _done(s, got[1]):
                 return got
         return None
-    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS):
+    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
+            not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
         words, j = _np(s, i)
         if not words or not _done(s, j):
             return None
@@ -1493,6 +1556,10 @@ class Grammar:
                 i += 1
                 continue
             subordinate = False
+            if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
+                    "you", "youve", "youre", "u"):
+                i += 2
+                t = "once"  # "as soon as you get to the kitchen": like "once you ..."
             if t in SUBORDINATORS and i + 1 < n and (toks[i + 1] in ("you", "youve", "youre", "u") or (
                     t == "after" and toks[i + 1] in ALL_VERBS)):
                 # "when you find it, pick it up": the clause says what happens first; it is kept
@@ -1509,8 +1576,16 @@ class Grammar:
                 if perfect and toks[i] in PAST:
                     toks[i] = PAST[toks[i]]  # "when you've found it": the verb ("when you went": a story)
             start = i
-            got = _clause(s, i)
+            got = _arrival(s, i) if subordinate and t != "if" else None
             if got is None:
+                s.subordinate = subordinate
+                got = _clause(s, i)
+                s.subordinate = False
+            if got is None:
+                if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
+                    i = _skip_rest(s, i + 1)
+                    s.first = False
+                    continue
                 if _opens_conversation(s, i) and not _topic(s, i):
                     dead = True
                 i += 1
@@ -1542,6 +1617,20 @@ class Grammar:
             s.first = False
             i = _skip_rest(s, j)
         return _dedupe_stops(out)
+
+
+def _arrival(s: _State, i: int) -> Result:
+    """After "when you" / "once you": being somewhere is getting there ("once you're at the
+    workbench, pick up the screwdriver", "when you arrive in the kitchen ..."): navigate_to_marker,
+    dropped like any subordinate clause when it repeats the navigation before it. (After "if"
+    it is a condition, not a plan.)"""
+    if s.at(i) in ("are", "re", "arrive", "arrived", "get", "got"):
+        i += 1  # "when you are at ...", "once you arrive at ..."
+    if s.at(i) not in ("at", "in", "inside", "by", "near"):
+        return None
+    words, e = _np(s, i + 1)
+    place = _place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], e) if place and words[-1] not in SURFACES else None
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

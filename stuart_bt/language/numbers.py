@@ -156,8 +156,21 @@ def _words(toks: Sequence[str], i: int) -> tuple[float, int] | None:
     return float(total + current), j
 
 
+def _after_point(toks: Sequence[str], k: int) -> tuple[float, int] | None:
+    """The decimals spoken after "point", one digit per word or as digits ("point seven five",
+    "point 5"): (the fraction, next index), or ``None``."""
+    n = len(toks)
+    if k < n and toks[k].isdigit():
+        return float("0." + toks[k]), k + 1
+    digits = []
+    while k < n and toks[k] in ONES and ONES[toks[k]] < 10:
+        digits.append(str(ONES[toks[k]]))
+        k += 1
+    return (float("0." + "".join(digits)), k) if digits else None
+
+
 def read_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
-    """A number at ``toks[i]``: digits ("1.5"), words ("one point five", "twenty five"),
+    """A number at ``toks[i]``: digits ("1.5"), words ("one point five", "point five", "twenty five"),
     fractions ("half", "a half", "three quarters", "two and a half"), vague amounts ("a couple
     of", "a few"). Returns (value, next index) or ``None``. A lone "a"/"an" is not a number here:
     "a metre" is read by :func:`read_quantity`, which knows a unit follows."""
@@ -188,19 +201,17 @@ def read_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
             j += 1
     elif t in FRACTIONS and t not in ("third", "thirds"):  # "half", "quarter" ("third" is an ordinal)
         value, j = FRACTIONS[t], i + 1
+    elif t == "point":  # "point five": the "zero" before the point is often not said
+        got = _after_point(toks, i + 1)
+        if got is not None:
+            value, j = got
     else:
         got = _words(toks, i)
         if got:
             value, j = got
-            if j + 1 < n and toks[j] == "point":  # "one point five", "zero point seven five"
-                digits = []
-                k = j + 1
-                while k < n and toks[k] in ONES and ONES[toks[k]] < 10:
-                    digits.append(str(ONES[toks[k]]))
-                    k += 1
-                if digits:
-                    value = float(f"{int(value)}.{''.join(digits)}")
-                    j = k
+            after = _after_point(toks, j + 1) if j + 1 < n and toks[j] == "point" else None
+            if after is not None:  # "one point five", "zero point seven five"
+                value, j = int(value) + after[0], after[1]
     if value is None:
         return None
     if j < n and toks[j] in FRACTIONS and value == int(value) and value >= 1 and t not in ("a", "an"):

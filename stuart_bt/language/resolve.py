@@ -329,8 +329,13 @@ class Resolver:
         """The resolution of an intent's target; ``None`` for actions without one (move, turn,
         stop). A find may name an object, a person or a place."""
         a = intent.action
-        if a == NAVIGATE:
-            return self.marker(intent.target)
+        if a == NAVIGATE:  # a place on the map, or else an object to walk up to ("go to the bottle")
+            place = self.marker(intent.target)
+            if not place.ok and self.objects:
+                thing = self.object(intent.target)
+                if thing.ok:
+                    return thing
+            return place
         if a == PICK:
             return self.object(intent.target)
         if a == GESTURE:

@@ -10,11 +10,11 @@ from .base import Leaf, LeafFailure, RunContext, SkillLeaf
 from .builtin import Condition, Log, Set, Stop, Wait
 from .expression import Gesture, Speak
 from .manipulation import Find, Pick, Release
-from .motion import Navigate, Turn
+from .motion import Approach, Navigate, Turn
 
 LEAF_CLASSES: dict[str, type[Leaf]] = {
     cls.kind: cls
-    for cls in (Navigate, Turn, Pick, Release, Find, Speak, Gesture, Wait, Stop, Condition, Set, Log)
+    for cls in (Navigate, Approach, Turn, Pick, Release, Find, Speak, Gesture, Wait, Stop, Condition, Set, Log)
 }
 
 

@@ -1,4 +1,4 @@
-"""Leaves that handle objects: ``pick``, ``release`` and ``find`` (pick daemon)."""
+"""Leaves that handle objects: ``pick`` and ``release`` (pick daemon), ``find`` (vision daemon)."""
 
 from __future__ import annotations
 
@@ -12,11 +12,12 @@ class _ObjectLeaf(SkillLeaf):
     def robot_pose(self) -> dict[str, float]:
         return self.ctx.blackboard.world.pose.to_dict()
 
-    def remember(self, label: str, position: dict[str, Any] | None) -> None:
+    def remember(self, label: str, position: dict[str, Any] | None, confidence: float = 1.0,
+                 source: str = "catalogue") -> None:
         if position:
             self.ctx.blackboard.world.objects[label] = KnownObject(
                 label, float(position["x"]), float(position["y"]), float(position.get("z", 0.0)),
-                seen_at=self.ctx.clock.now(),
+                confidence=confidence, seen_at=self.ctx.clock.now(), source=source,
             )
 
 
@@ -30,7 +31,11 @@ class Pick(_ObjectLeaf):
         label = str(self.param("object"))
         if world.held is not None:
             raise LeafFailure(f"already_holding: already holding {world.held!r}; release it first")
-        return "pick", {"object": label, "arm": self.param("arm"), "robot_pose": self.robot_pose()}
+        args = {"object": label, "arm": self.param("arm"), "robot_pose": self.robot_pose()}
+        known = world.objects.get(label)
+        if known is not None and known.source == "vision":  # aim where the camera saw it
+            args["position"] = {"x": known.x, "y": known.y, "z": known.z}
+        return "pick", args
 
     def on_done(self, result: dict[str, Any]) -> None:
         world = self.ctx.blackboard.world
@@ -57,12 +62,20 @@ class Release(_ObjectLeaf):
 
 
 class Find(_ObjectLeaf):
-    """Locate an object; its position goes to the world state's known objects."""
+    """Look for an object (vision daemon); its position goes to the world state's known objects
+    and the spatial memory's summary goes out as a ``memory`` event."""
 
     kind = "find"
 
     def command(self) -> tuple[str, dict[str, Any]]:
-        return "find", {"object": str(self.param("object")), "robot_pose": self.robot_pose()}
+        return "find", {"object": str(self.param("object")), "robot_pose": self.robot_pose(),
+                        "held": self.ctx.blackboard.world.held}
 
     def on_done(self, result: dict[str, Any]) -> None:
-        self.remember(result.get("object", str(self.param("object"))), result.get("position"))
+        label = result.get("object", str(self.param("object")))
+        if result.get("in_hand"):
+            return  # held: the world state already says so
+        self.remember(label, result.get("position"), float(result.get("confidence", 1.0)), source="vision")
+        memory = result.get("memory")
+        if isinstance(memory, dict):
+            self.ctx.events.publish("memory", self.spec_path, **memory)

@@ -44,6 +44,31 @@ class Navigate(SkillLeaf):
             world.last_marker = result["marker"]
 
 
+class Approach(Navigate):
+    """Walk up to a remembered object or a point and stop with it ``standoff`` ahead and ``lateral``
+    to the side (in front of a shoulder), facing it.
+
+    The object's position is read from the world state when the leaf starts, not when the tree was
+    built, so a ``find`` earlier in the tree (or a repair that looked again) is what counts. The
+    daemon chooses where to stand (the sim and the robot avoid furniture on their map)."""
+
+    kind = "approach"
+
+    def command(self) -> tuple[str, dict[str, Any]]:
+        if self.has("object"):
+            label = str(self.param("object"))
+            objects = self.ctx.blackboard.world.objects
+            if label not in objects:
+                raise LeafFailure(f"unknown_object: no remembered position for {label!r}; find it first"
+                                  f"{did_you_mean(label, objects)}")
+            x, y = objects[label].x, objects[label].y
+        else:
+            x, y = float(self.param("x")), float(self.param("y"))
+        spot = {"x": x, "y": y, "standoff": float(self.param("standoff")), "lateral": float(self.param("lateral"))}
+        return "navigate", {"approach": spot, "tolerance": float(self.param("tolerance")),
+                            "yaw_tolerance": float(self.param("yaw_tolerance"))}
+
+
 class Turn(SkillLeaf):
     """Turn in place; ``angle`` in radians or ``degrees``, counter-clockwise positive."""
 

@@ -50,10 +50,11 @@ class Command:
         return self.parse.command or self.parse.utterance
 
 
-def interpret(parser: Parser, utterance: str) -> Command:
-    """Classify one utterance (never raises on text)."""
+def interpret(parser: Parser, utterance: str, woken: bool = False) -> Command:
+    """Classify one utterance (never raises on text). ``woken``: the wake phrase was already heard
+    (a channel that filtered it, e.g. the ROS bridge's ``/llm/input``), so it is not required."""
     wake = parser.wake_filter.match(utterance)
-    if not wake.woke and parser.require_wake:
+    if not wake.woke and parser.require_wake and not woken:
         return Command(IGNORE, ParseResult(utterance))
     text = (wake.command if wake.woke else utterance).strip()
     stripped, instead = _strip_instead(text)

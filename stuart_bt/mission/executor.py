@@ -130,6 +130,7 @@ class MissionExecutor:
         self._worker: threading.Thread | None = None
         self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
         self._pending_replies = 0
+        self._asides: deque[str] = deque()  # replies to say while a mission runs, between its own speech
 
     # -- life cycle ---------------------------------------------------------------------------------
     def start(self) -> Self:
@@ -197,11 +198,15 @@ class MissionExecutor:
         return {"succeeded": "SUCCESS", "stopped": "STOPPED"}.get(last, "FAILURE")
 
     # -- input --------------------------------------------------------------------------------------
-    def submit(self, utterance: str) -> Command:
-        """Take one utterance (any thread); returns at once with what it was understood as."""
-        command = interpret(self.parser, utterance)
+    def submit(self, utterance: str, woken: bool = False) -> Command:
+        """Take one utterance (any thread); returns at once with what it was understood as.
+        ``woken``: treat it as if the wake phrase had been said (an input that filtered it already).
+        The ``utterance`` event's ``parsed`` holds every intent the grammar found (the
+        ``stuart-bt parse`` intents, a leading ``stop`` included); ``intents`` the ones to plan."""
+        command = interpret(self.parser, utterance, woken)
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
-                            intents=[i.to_dict() for i in command.intents])
+                            intents=[i.to_dict() for i in command.intents],
+                            parsed=[i.to_dict() for i in command.parse.intents])
         if command.kind == IGNORE:
             return command
         if command.kind == STOP:
@@ -214,10 +219,33 @@ class MissionExecutor:
             self._accept(utterance, command.intents, replace=command.replace)
         return command
 
+    def daemon_request(self, family: str, cmd: str, args: dict[str, Any] | None = None) -> bool:
+        """Send one command to a skill daemon from the tick thread (the supervisor belongs to it),
+        before the running tree's next tick: e.g. ``("pick", "confirm")`` for the pick
+        confirmation gate. False (and nothing is sent) when no tree is running: a command kept for
+        a later tree could confirm a pick nobody has seen yet."""
+        with self._cond:
+            executor = self._executor
+            if executor is None or self.session.supervisor is None:
+                return False
+            supervisor = self.session.supervisor
+            if family not in supervisor.families:
+                raise ValueError(f"no {family!r} daemon; the daemons are {', '.join(supervisor.families)}")
+            sent: list[bool] = []
+
+            def send() -> None:  # once; it stays in the list (removing it mid-iteration skips a hook)
+                if not sent:
+                    sent.append(True)
+                    supervisor.client(family).request(cmd, args or {})
+
+            executor.pre_tick.append(send)
+            return True
+
     def _stop(self, command: Command) -> None:
         with self._cond:
             dropped = [j for j in self._queue if isinstance(j, Mission)]
             self._queue.clear()
+            self._asides.clear()
             for m in dropped:
                 m.status, m.reason = "stopped", "stop requested"
                 self.events.publish("mission", id=m.id, phase="stopped", reason="queue cleared")
@@ -242,8 +270,10 @@ class MissionExecutor:
             self._cond.notify_all()
 
     def _converse(self, text: str) -> None:
+        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+
         context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None,
-                   "detections": sorted(self.world.objects)}  # memory stands in until perception lands
+                   "detections": seen_objects(self.world, self.session.clock.now())}
         with self._cond:
             self._pending_replies += 1
 
@@ -252,7 +282,10 @@ class MissionExecutor:
                 reply = self.conversation.reply(text, context)
                 self.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
                 with self._cond:
-                    self._queue.appendleft(_Say(reply.text, "reply"))
+                    if isinstance(self._current, Mission) and self._executor is not None:
+                        self._asides.append(reply.text)  # said at the mission's next pause in speech
+                    else:
+                        self._queue.appendleft(_Say(reply.text, "reply"))
             finally:
                 with self._cond:
                     self._pending_replies -= 1
@@ -316,6 +349,8 @@ class MissionExecutor:
                 with self._cond:
                     self._current = None
                     self._executor = None
+                    while self._asides:  # the mission ended before a reply found a pause: say it now
+                        self._queue.appendleft(_Say(self._asides.pop(), "reply"))
                     self._cond.notify_all()
 
     def _say(self, text: str) -> RunOutcome:
@@ -446,6 +481,8 @@ class MissionExecutor:
                 succeeded.add(event.path)
 
         unsubscribe = self.events.subscribe(track)
+        if mission is not None:
+            executor.pre_tick.append(self._say_aside)
         with self._cond:
             self._executor = executor
             if mission is not None and mission.cancelled is not None:
@@ -460,6 +497,20 @@ class MissionExecutor:
                 self._executor = None
         failed = _failed_leaf(root) if outcome.status == "FAILURE" else None
         return outcome, succeeded, failed
+
+    def _say_aside(self) -> None:
+        """Before a mission tick: a reply that is waiting goes to the speech daemon when the mission
+        is not speaking, so a question asked during a walk is answered during the walk. The
+        mission's own next speech takes the voice back (the daemon preempts the older one)."""
+        if not self._asides or self.session.supervisor is None or "tts" not in self.session.supervisor.families:
+            return
+        tts = self.session.supervisor.client("tts")
+        if any(r.cmd == "say" for r in tts.in_flight):
+            return
+        with self._cond:
+            text = self._asides.popleft() if self._asides else None
+        if text is not None:
+            tts.request("say", {"text": text}, path="reply")
 
     def _leaf_reason(self, path: str | None) -> str | None:
         outcomes = self.session.blackboard.get("outcomes", None) or {}
@@ -485,7 +536,8 @@ def _all_families_spec(markers_file: str) -> TreeSpec:
     leaves = [NodeSpec("speak", "speak", "daemons/speak", where, {"text": ""}),
               NodeSpec("navigate", "navigate", "daemons/navigate", where, {"dx": 0}),
               NodeSpec("gesture", "gesture", "daemons/gesture", where, {"play": "clap"}),
-              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"})]
+              NodeSpec("pick", "pick", "daemons/pick", where, {"object": "cup"}),
+              NodeSpec("find", "find", "daemons/find", where, {"object": "cup"})]
     return TreeSpec(NodeSpec("sequence", "daemons", "daemons", where, {}, leaves), "<missions>",
                     markers_file=markers_file)
 

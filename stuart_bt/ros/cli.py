@@ -1,0 +1,133 @@
+"""``stuart-bt ros``: the mission pipeline behind the original system's ROS 2 topics.
+
+Starts one :class:`~stuart_bt.mission.executor.MissionExecutor` (daemons, and the MuJoCo world on
+the sim backend) and one bridge node, then waits for SIGINT or SIGTERM; either shuts the tree,
+the daemons and the node down, and the command exits 0. A start that fails (bad namespace or
+domain id, a daemon that does not come up) prints one line and exits 1. docs/ros.md has the topics.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import signal
+import sys
+import threading
+from pathlib import Path
+from typing import Any
+
+from ..mission.cli import add_llm_arguments, llm_options
+
+EXIT_OK, EXIT_FAILED = 0, 1
+MAX_DOMAIN_ID = 232  # the highest ROS 2 domain id whose DDS ports fit (ROS 2 docs, "domain ID")
+
+
+def add_ros_command(subparsers: Any) -> argparse.ArgumentParser:
+    """Register ``stuart-bt ros`` on an argparse sub-parser set."""
+    p = subparsers.add_parser(
+        "ros", help="a ROS 2 bridge node: /audio_msg in, /llm/task_intent, /llm/response, /bt/status out",
+        description="Run the mission pipeline behind the original system's ROS 2 topics (docs/ros.md). "
+                    "ROS_DOMAIN_ID is respected; Ctrl-C or SIGTERM stops node, tree and daemons.")
+    p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry", help="skill backend (default dry)")
+    p.add_argument("--namespace", default="/", metavar="NS", help="namespace of the node and its topics (default /)")
+    p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
+    p.add_argument("--speed", type=float, help="dry: clock seconds per wall second (default 1)")
+    p.add_argument("--status-rate", type=float, default=10.0, metavar="HZ",
+                   help="most /bt/status messages per second (default 10)")
+    p.add_argument("--confirm-picks", action="store_true",
+                   help="hold every pick until 'confirm' arrives on /pick_target (the original safety step)")
+    p.add_argument("--log", type=Path, metavar="OUT.jsonl", help="also write every event, one JSON object per line")
+    add_llm_arguments(p)
+    p.set_defaults(func=cmd_ros)
+    return p
+
+
+def cmd_ros(args: argparse.Namespace) -> int:
+    problem = _check(args)
+    if problem:
+        print(f"stuart-bt: {problem}", file=sys.stderr)
+        return EXIT_FAILED
+    from ..mission.executor import MissionExecutor, MissionOptions
+    from .node import Bridge  # rclpy loads here, and only in this process
+
+    options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, log=args.log,
+                             conversation=args.llm, conversation_options=llm_options(args),
+                             daemon_options={"pick": {"confirm": True}} if args.confirm_picks else {})
+    stop = threading.Event()
+    previous = _handlers(stop)
+    try:
+        try:
+            robot = MissionExecutor(options)
+        except (ValueError, RuntimeError) as e:  # bad options, a missing model file
+            print(f"stuart-bt: {e}", file=sys.stderr)
+            return EXIT_FAILED
+        with robot:
+            bridge = Bridge(robot, namespace=_namespace(args.namespace), status_rate=args.status_rate)
+            try:
+                bridge.start()
+                _announce(bridge, robot)
+                while not stop.wait(0.2):
+                    pass
+                robot.close()  # the tree halts and the daemons stop while the node still reports it
+            finally:
+                bridge.close()
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+    print("ros bridge: stopped; every daemon stopped", flush=True)
+    return EXIT_OK
+
+
+def _check(args: argparse.Namespace) -> str | None:
+    """One sentence for the first bad option, else None (nothing has started yet)."""
+    if args.status_rate <= 0:
+        return "--status-rate must be positive"
+    domain = os.environ.get("ROS_DOMAIN_ID", "").strip()
+    if domain and not (domain.isdigit() and int(domain) <= MAX_DOMAIN_ID):
+        return f"ROS_DOMAIN_ID must be a whole number from 0 to {MAX_DOMAIN_ID}, not {domain!r}"
+    from .guard import forbid_vendor_sdk
+
+    forbid_vendor_sdk()  # before rclpy loads
+    from rclpy.exceptions import InvalidNamespaceException
+    from rclpy.validate_namespace import validate_namespace
+
+    try:
+        validate_namespace(_namespace(args.namespace))
+    except InvalidNamespaceException as e:
+        why = str(e).splitlines()[0].removeprefix("Invalid namespace: ").rstrip(": ")
+        return f"bad --namespace {args.namespace!r}: {why} (try {_closest_namespace(args.namespace)!r})"
+    return None
+
+
+def _closest_namespace(ns: str) -> str:
+    """A valid namespace like ``ns``: other characters become '_', no empty or digit-led parts."""
+    parts = [re.sub(r"\W", "_", p, flags=re.ASCII) for p in ns.split("/") if p]
+    return "/" + "/".join(p if not p[0].isdigit() else "_" + p for p in parts)
+
+
+def _namespace(ns: str) -> str:
+    return ns if ns.startswith("/") else "/" + ns
+
+
+def _announce(bridge: Any, robot: Any) -> None:
+    """One line that says the bridge is up and where (tests and scripts wait for it)."""
+    from . import topics as t
+
+    supervisor = robot.session.supervisor
+    daemons = ", ".join(f"{f} {supervisor.pid(f)}" for f in supervisor.families) if supervisor else "none"
+    ins = " ".join(bridge.resolve(k) for k in (t.AUDIO_IN, t.LLM_INPUT, t.MISSION_IN, t.PICK_TARGET))
+    print(f"ros bridge: node {bridge.full_name} domain {bridge.context.get_domain_id()} backend "
+          f"{robot.options.backend}; daemons {daemons}; listening on {ins}", flush=True)
+
+
+def _handlers(stop: threading.Event) -> dict[int, Any]:
+    """SIGINT and SIGTERM only set ``stop``: the main thread then shuts down in order. SIGINT is
+    set explicitly because a bridge started in the background inherits it ignored."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+
+    def handler(signum: int, frame: Any) -> None:
+        stop.set()
+
+    return {s: signal.signal(s, handler) for s in (signal.SIGINT, signal.SIGTERM)}

@@ -1,0 +1,317 @@
+"""The web app: pages, the event socket and a small JSON API, on Starlette.
+
+Routes (every answer is JSON; a refused request gets ``{"error": "one sentence"}`` and 400, 403,
+404 or 409):
+
+| route | what |
+|---|---|
+| ``GET /`` and ``/static/*`` | the page (HTML, JS, CSS shipped in the package) |
+| ``WS /ws`` | ``hello`` (info, snapshot, history), then ``events`` batches |
+| ``GET /api/state`` | busy, running, can_continue |
+| ``POST /api/run``, ``/api/stop``, ``/api/continue`` | the served tree (or the mission's stop / continue) |
+| ``POST /api/say`` ``{text}`` | an utterance to the mission executor |
+| ``POST /api/walk`` ``{x, y, yaw}``, ``/api/goto`` ``{marker}`` | walk to a map pose / a marker |
+| ``GET /api/map``, ``/api/map.png`` | map numbers and picture |
+| ``GET /api/markers``, ``POST /api/markers`` ``{op, name, ...}`` | the marker file (markers.py) |
+| ``GET /api/joints``, ``GET /api/pose``, ``POST /api/pose`` ``{joints}`` | sliders; the sim's arm pose now; a pose to take |
+| ``GET /api/gestures``, ``GET/POST /api/gestures/{name}``, ``POST /api/gestures/{name}/play`` | gesture files |
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import math
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
+from importlib.resources import files
+from pathlib import Path
+from typing import Any, AsyncIterator, Awaitable, Callable
+
+from starlette.applications import Starlette
+from starlette.requests import Request
+from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.routing import Mount, Route, WebSocketRoute
+from starlette.staticfiles import StaticFiles
+from starlette.types import ASGIApp, Receive, Scope, Send
+from starlette.websockets import WebSocket, WebSocketDisconnect
+
+from ..world import load_markers
+from .control import ControlError
+from .gestures import GestureDeskError, GestureFolder, joint_table
+from .hub import EventHub
+from .mapfile import MapFile
+from .markers import MarkerConflict, MarkerEditError, MarkerStore
+from .security import CHANGING, COOKIE, Guard
+
+STATIC = Path(str(files("stuart_bt.web").joinpath("static")))
+POSE_BLEND = 0.25  # sim seconds the arms take to reach a slider pose
+
+
+@dataclass
+class WebParts:
+    """What one server serves; ``control`` is None for a replay."""
+
+    hub: EventHub
+    guard: Guard
+    control: Any = None
+    markers: MarkerStore | None = None
+    map: MapFile | None = None
+    gestures: GestureFolder | None = None
+
+
+class BadRequest(Exception):
+    """One sentence for the page; becomes a 400 answer."""
+
+
+def create_app(parts: WebParts) -> Starlette:
+    hub, control = parts.hub, parts.control
+
+    def need_control() -> Any:
+        if control is None:
+            raise ControlError("this is a replay of a saved log: nothing to command")
+        return control
+
+    async def index(request: Request) -> Response:
+        response = FileResponse(STATIC / "index.html")
+        token = request.query_params.get("token")
+        if parts.guard.token is not None and token:
+            response.set_cookie(COOKIE, token, httponly=True, samesite="strict")
+        return response
+
+    async def state(request: Request) -> Response:
+        return JSONResponse(need_control().state() if control else {"mode": "replay", "busy": False})
+
+    async def run(request: Request) -> Response:
+        await _off_loop(need_control().run)
+        return JSONResponse({"ok": True})
+
+    async def stop(request: Request) -> Response:
+        await _off_loop(need_control().stop)
+        return JSONResponse({"ok": True})
+
+    async def resume(request: Request) -> Response:
+        await _off_loop(need_control().resume)
+        return JSONResponse({"ok": True})
+
+    async def say(request: Request) -> Response:
+        body = await _json(request)
+        text = body.get("text")
+        if not isinstance(text, str) or not text.strip():
+            raise BadRequest("type something to say")
+        result = await _off_loop(need_control().say, text.strip())
+        return JSONResponse({"ok": True, **(result or {})})
+
+    async def walk(request: Request) -> Response:
+        body = await _json(request)
+        x, y = _number(body, "x"), _number(body, "y")
+        yaw = None if body.get("yaw") is None else _number(body, "yaw")
+        await _off_loop(need_control().walk, x, y, yaw)
+        return JSONResponse({"ok": True})
+
+    async def goto(request: Request) -> Response:
+        body = await _json(request)
+        marker = body.get("marker")
+        if not isinstance(marker, str):
+            raise BadRequest("name a marker to go to")
+        await _off_loop(need_control().go_to, marker)
+        return JSONResponse({"ok": True})
+
+    async def map_info(request: Request) -> Response:
+        if parts.map is None:
+            raise ControlError("no map")
+        return JSONResponse(parts.map.info())
+
+    async def map_png(request: Request) -> Response:
+        if parts.map is None:
+            raise ControlError("no map")
+        return FileResponse(parts.map.png, media_type="image/png")
+
+    async def markers_get(request: Request) -> Response:
+        if parts.markers is None:
+            raise ControlError("no marker file")
+        return JSONResponse(await _off_loop(parts.markers.load))
+
+    async def markers_edit(request: Request) -> Response:
+        if parts.markers is None:
+            raise ControlError("no marker file")
+        body = await _json(request)
+        try:
+            doc = await _off_loop(parts.markers.edit, body)
+        except MarkerConflict as e:
+            return JSONResponse({"error": str(e), "current": e.current}, status_code=409)
+        if control is not None:
+            control.set_markers(load_markers(parts.markers.path))
+        return JSONResponse(doc)
+
+    async def joints(request: Request) -> Response:
+        return JSONResponse({"joints": await _off_loop(joint_table),
+                             "live": bool(control is not None and control.mode == "tree"
+                                          and control.session.world is not None)})
+
+    async def pose(request: Request) -> Response:
+        body = await _json(request)
+        joints_in = body.get("joints")
+        if not isinstance(joints_in, dict) or not joints_in:
+            raise BadRequest("'joints' must map joint names to radians")
+        from ..skills.gesture.keyframes import validate_keyframes
+
+        problems = validate_keyframes([{"t": 0.0, "joints": joints_in}])
+        if problems:
+            raise BadRequest("; ".join(p.removeprefix("keyframe 0: ") for p in problems))
+        result = await _off_loop(need_control().world_call, "arm_trajectory", id="web pose",
+                                 points=[{"t": POSE_BLEND, "joints": joints_in}])
+        return JSONResponse({"ok": True, "ends_at": result.get("ends_at")})
+
+    async def pose_now(request: Request) -> Response:
+        state_now = await _off_loop(need_control().world_call, "state")
+        names = {row["name"] for row in await _off_loop(joint_table)}
+        return JSONResponse({"joints": {k: v for k, v in state_now.get("joints", {}).items() if k in names},
+                             "t": state_now.get("t")})
+
+    def folder() -> GestureFolder:
+        if parts.gestures is None:
+            raise ControlError("no gesture folder")
+        return parts.gestures
+
+    async def gestures_list(request: Request) -> Response:
+        return JSONResponse({"folder": str(folder().folder), "gestures": folder().names()})
+
+    async def gesture_get(request: Request) -> Response:
+        return JSONResponse(await _off_loop(folder().load, request.path_params["name"]))
+
+    async def gesture_save(request: Request) -> Response:
+        body = await _json(request)
+        path = await _off_loop(folder().save, request.path_params["name"], body.get("keyframes"))
+        return JSONResponse({"ok": True, "file": str(path)})
+
+    async def gesture_play(request: Request) -> Response:
+        name = request.path_params["name"]
+        await _off_loop(folder().load, name)  # refuses a missing or broken file with its problems
+        await _off_loop(need_control().play_gesture, folder().path_for(name))
+        return JSONResponse({"ok": True})
+
+    async def socket(websocket: WebSocket) -> None:
+        if not parts.guard.origin_ok(websocket.headers) or not parts.guard.token_ok(
+                websocket.query_params, websocket.headers, websocket.cookies):
+            await websocket.close(code=1008)
+            return
+        await websocket.accept()
+        client, hello = hub.connect()
+        try:
+            await websocket.send_text(hello)
+            while True:
+                text = await client.queue.get()
+                if text is None:
+                    break
+                await websocket.send_text(text)
+        except (WebSocketDisconnect, RuntimeError):
+            pass
+        finally:
+            hub.disconnect(client)
+
+    routes = [
+        Route("/", index),
+        Route("/api/state", state),
+        Route("/api/run", run, methods=["POST"]),
+        Route("/api/stop", stop, methods=["POST"]),
+        Route("/api/continue", resume, methods=["POST"]),
+        Route("/api/say", say, methods=["POST"]),
+        Route("/api/walk", walk, methods=["POST"]),
+        Route("/api/goto", goto, methods=["POST"]),
+        Route("/api/map", map_info),
+        Route("/api/map.png", map_png),
+        Route("/api/markers", markers_get, methods=["GET"]),
+        Route("/api/markers", markers_edit, methods=["POST"]),
+        Route("/api/joints", joints),
+        Route("/api/pose", pose_now, methods=["GET"]),
+        Route("/api/pose", pose, methods=["POST"]),
+        Route("/api/gestures", gestures_list),
+        Route("/api/gestures/{name}", gesture_get, methods=["GET"]),
+        Route("/api/gestures/{name}", gesture_save, methods=["POST"]),
+        Route("/api/gestures/{name}/play", gesture_play, methods=["POST"]),
+        WebSocketRoute("/ws", socket),
+        Mount("/static", StaticFiles(directory=STATIC), name="static"),
+    ]
+
+    @asynccontextmanager
+    async def lifespan(app: Starlette) -> AsyncIterator[None]:
+        hub.attach(asyncio.get_running_loop())
+        yield
+        hub.close()
+
+    app = Starlette(routes=routes, lifespan=lifespan, exception_handlers=EXCEPTION_HANDLERS)
+    return _Checked(app, parts.guard)  # type: ignore[return-value]
+
+
+class _Checked:
+    """ASGI wrapper: the token on every HTTP request, Origin on changing ones."""
+
+    def __init__(self, app: ASGIApp, guard: Guard) -> None:
+        self.app = app
+        self.guard = guard
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)  # the socket checks its own token and origin
+            return
+        request = Request(scope)
+        if not self.guard.token_ok(request.query_params, request.headers, request.cookies):
+            await _error("a token is needed: open the address printed when the server started", 403)(
+                scope, receive, send)
+            return
+        if request.method in CHANGING and not self.guard.origin_ok(request.headers):
+            await _error("refused: the request did not come from this page (Origin)", 403)(scope, receive, send)
+            return
+        await self.app(scope, receive, send)
+
+
+def _error(message: str, status: int) -> Response:
+    return JSONResponse({"error": message}, status_code=status)
+
+
+def _refusal(status: int) -> Callable[[Request, Exception], Awaitable[Response]]:
+    async def handler(request: Request, exc: Exception) -> Response:
+        return _error(str(exc), status)
+    return handler
+
+
+async def _gesture_refusal(request: Request, exc: Exception) -> Response:
+    problems = getattr(exc, "problems", [str(exc)])
+    status = 404 if problems and problems[0].startswith("no gesture") else 400
+    return JSONResponse({"error": "; ".join(problems), "problems": problems}, status_code=status)
+
+
+EXCEPTION_HANDLERS = {ControlError: _refusal(409), BadRequest: _refusal(400), MarkerEditError: _refusal(400),
+                      GestureDeskError: _gesture_refusal}
+
+
+async def _off_loop(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    """Run a blocking call (file, daemon, world) in a thread; a refusal of the world or the file
+    system becomes one sentence for the page."""
+    try:
+        return await asyncio.to_thread(fn, *args, **kwargs)
+    except OSError as e:
+        raise BadRequest(f"{e.strerror or e}") from None
+    except Exception as e:
+        if type(e).__name__ == "WorldError":  # the simulator refused (e.g. a joint limit)
+            raise BadRequest(f"the simulator refused: {e}") from None
+        raise
+
+
+async def _json(request: Request) -> dict[str, Any]:
+    try:
+        body = json.loads(await request.body() or b"{}")
+    except (json.JSONDecodeError, UnicodeDecodeError):
+        raise BadRequest("the request body is not JSON") from None
+    if not isinstance(body, dict):
+        raise BadRequest("the request body must be a JSON object")
+    return body
+
+
+def _number(body: dict[str, Any], key: str) -> float:
+    value = body.get(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise BadRequest(f"{key} must be a finite number (metres or radians)")
+    return float(value)
+

@@ -1,0 +1,65 @@
+"""End to end in the simulator: the find leaf asks the vision daemon, which renders the head
+camera, detects, projects and remembers; the position lands in the world state, a ``memory``
+event carries the summary, and pick aims at the remembered position.
+
+Lab (docs/sim.md): at 'kitchen' (3.5, 1.5, facing +x) the bottle stands 0.51 m ahead on the
+table, the apple further left; the cup is on the workbench, out of sight from there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pytest.importorskip("cv2", reason="perception needs the 'vision' extra (opencv-python-headless)")
+
+FIND_BOTTLE = "root: {find: {name: look, object: bottle}}"
+FIND_AND_PICK = """
+root:
+  sequence:
+    - navigate: {name: step_up, dx: 0.18}
+    - find: {name: look, object: bottle}
+    - pick: {name: grab, object: bottle, arm: right}
+"""
+
+
+def gap(a: dict, b: dict) -> float:
+    return math.dist((a["x"], a["y"], a["z"]), (b["x"], b["y"], b["z"]))
+
+
+def test_at_the_kitchen_the_robot_finds_the_bottle_where_the_sim_has_it(stuart_sim):
+    result = stuart_sim(text=FIND_BOTTLE, start="kitchen")
+
+    result.assert_success()
+    truth = result.object_position("bottle")
+    seen = result.world["objects"]["bottle"]
+    assert seen["source"] == "vision"
+    assert gap(seen, truth) < 0.025, f"seen at {seen}, the sim has it at {truth}"
+    [found] = [r["result"] for r in result.leaf_results("find")]
+    assert found["frames"] >= 3 and found["distance"] == pytest.approx(0.51, abs=0.03)
+    assert {d["label"] for d in found["detections"]} == {"bottle", "apple"}  # the apple is in view too
+    [memory] = result.events("memory")
+    assert memory["format"] == "stuart_bt.memory/1"
+    assert sorted(o["label"] for o in memory["objects"]) == ["apple", "bottle"]
+    apple = next(o for o in memory["objects"] if o["label"] == "apple")
+    assert gap(apple, result.object_position("apple")) < 0.025
+
+
+def test_an_object_out_of_view_is_not_found_and_the_reason_says_what_was_seen(stuart_sim):
+    result = stuart_sim(text="root: {find: {name: look, object: cup}}", start="kitchen")
+
+    assert result.status == "FAILURE"
+    reason = result.assert_failed("look", "not_found")
+    assert "no cup in view" in reason and "apple, bottle" in reason
+    assert "cup" not in result.world["objects"] or result.world["objects"]["cup"]["source"] != "vision"
+
+
+def test_pick_aims_at_the_position_the_camera_found(stuart_sim):
+    result = stuart_sim(text=FIND_AND_PICK, start="kitchen")
+
+    result.assert_success()
+    [pick] = result.commands("pick")
+    assert gap(pick["args"]["position"], result.initial_world["objects"]["bottle"]) < 0.025
+    result.assert_object_raised("bottle", by=0.05)
+    result.assert_holding("bottle")

@@ -1,0 +1,159 @@
+"""The ROS 2 bridge, driven across processes by a plain rclpy client (tests/ros_client.py).
+
+Each test runs ``stuart-bt ros`` in one process and the client in another; DDS stays on this
+machine (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) in a domain of this test session.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import signal
+import time
+
+import pytest
+
+pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed: pip install -e '.[ros]'")
+
+from ros_harness import BridgeProcess, RosClient, alive, ros_env, session_domain_id  # noqa: E402
+
+KITCHEN = (3.5, 1.5)  # sim/maps/lab_markers.json
+ARRIVAL = 0.5  # m: the original system's arrival tolerance
+
+
+def intents(client: RosClient, topic: str = "/llm/task_intent") -> list[dict]:
+    return [json.loads(m["data"]) for m in client.on(topic)]
+
+
+def utterances(client: RosClient, topic: str = "/bt/events") -> list[dict]:
+    """Utterance events. Their log line's ``kind`` is the utterance's kind (ignore, tasks, stop...):
+    Event.to_dict lets data keys override the event's own; ``parsed`` marks them."""
+    return [e for e in (json.loads(m["data"]) for m in client.on(topic)) if "parsed" in e]
+
+
+def events_of(client: RosClient, kind: str, topic: str = "/bt/events") -> list[dict]:
+    return [e for e in (json.loads(m["data"]) for m in client.on(topic)) if e["kind"] == kind]
+
+
+def test_hey_stuart_go_to_the_kitchen_from_another_process_walks_the_sim_robot_there():
+    with BridgeProcess("--backend", "sim") as bridge:
+        bridge.up()
+        with RosClient() as client:
+            client.publish("audio_msg", "Hey Stuart, go to the kitchen")
+
+            intent = client.wait_for(lambda m: m.get("topic") == "/llm/task_intent")
+            said = client.wait_for(lambda m: m.get("topic") == "/llm/response")
+            finished = client.wait_for(lambda m: m.get("topic") == "/bt/events"
+                                       and '"phase":"finished"' in m["data"], timeout=180)
+            status = client.wait_for(lambda m: m.get("topic") == "/bt/status"
+                                     and (json.loads(m["data"]).get("mission") or {}).get("phase") == "finished")
+            poses = client.on("/robot_pose")
+        children = bridge.descendants()
+        assert bridge.stop() == 0
+
+    assert json.loads(intent["data"]) == {"action": "navigate_to_marker", "target": "kitchen", "x": 0.0, "y": 0.0,
+                                          "yaw": 0.0, "raw_text": "go to the kitchen"}
+    assert said["data"] == "Navigating to the kitchen"
+    assert json.loads(finished["data"])["status"] == "succeeded"
+    snapshot = json.loads(status["data"])
+    assert snapshot["format"] == "stuart_bt.snapshot/1" and snapshot["mission"]["status"] == "succeeded"
+    assert len(poses) > 5 and {p["frame"] for p in poses} == {"map"}
+    last = poses[-1]
+    assert math.hypot(last["x"] - KITCHEN[0], last["y"] - KITCHEN[1]) < ARRIVAL
+    assert math.hypot(poses[0]["x"] - KITCHEN[0], poses[0]["y"] - KITCHEN[1]) > 2.0  # it walked there
+    assert children and not [c for c in children if alive(c)]  # the world and every daemon are gone
+
+
+def test_the_wake_filter_applies_on_audio_msg_only_and_the_namespace_prefixes_every_topic():
+    with BridgeProcess("--backend", "dry", "--speed", "20", "--namespace", "lab_robot") as bridge:
+        line = bridge.up()
+        with RosClient("/lab_robot") as client:
+            def say(topic: str, text: str) -> None:  # one at a time: topics are not ordered among themselves
+                client.publish(topic, text)
+                assert client.wait_for(lambda m: m.get("topic") == "/lab_robot/bt/events"
+                                       and '"parsed":' in m["data"] and json.dumps(text) in m["data"])
+
+            say("audio_msg", "go to the kitchen")  # no wake phrase: the recogniser heard chatter
+            say("llm/input", "turn around")  # filtered upstream already
+            say("stuart/mission", "wave")
+            say("audio_msg", "Hey Stuart, stop")
+            client.wait_for(lambda m: m.get("topic") == "/lab_robot/llm/task_intent" and '"stop"' in m["data"])
+            heard = utterances(client, "/lab_robot/bt/events")
+
+    assert "/lab_robot/audio_msg" in line and "/lab_robot/pick_target" in line
+    assert f" domain {session_domain_id()} " in line  # ROS_DOMAIN_ID from the environment
+    assert [i["action"] for i in intents(client, "/lab_robot/llm/task_intent")] == ["turn_around", "gesture", "stop"]
+    assert [(u["text"], u["kind"]) for u in heard] == [
+        ("go to the kitchen", "ignore"), ("turn around", "tasks"), ("wave", "tasks"), ("Hey Stuart, stop", "stop")]
+
+
+def test_malformed_messages_are_logged_and_ignored_and_the_bridge_keeps_listening():
+    with BridgeProcess("--backend", "dry", "--speed", "20") as bridge:
+        bridge.up()
+        with RosClient() as client:
+            client.publish("audio_msg", "")
+            client.publish("audio_msg", "\x00\x01\x02  \x7f")
+            client.publish("stuart/mission", "x" * 5000)
+            client.publish("audio_msg", 42, int32=True)  # the wrong message type on the topic
+            client.publish("pick_target", "confirm")  # no pick is waiting for it
+            client.publish("pick_target", "bottle")
+            intent = client.wait_for(lambda m: m.get("topic") == "/llm/task_intent")
+            warnings = [w["message"] for w in events_of(client, "warning")]
+        still_running = bridge.proc.poll() is None
+        assert bridge.stop() == 0
+
+    assert still_running
+    assert json.loads(intent["data"])["action"] == "pick_up" and json.loads(intent["data"])["target"] == "bottle"
+    assert warnings.count("ros: ignored a malformed message on audio_msg") == 2
+    assert "ros: ignored a malformed message on stuart/mission" in warnings
+    assert "ros: confirm received but no pick is waiting" in warnings
+    assert any("ignored a malformed message" in line for line in bridge.err.lines)  # logged by the node
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_signal_during_a_mission_stops_the_tree_and_the_daemons_and_leaves_no_child(sig):
+    with BridgeProcess("--backend", "dry") as bridge:  # real time: the walk takes seconds
+        bridge.up()
+        with RosClient() as client:
+            client.publish("stuart/mission", "go to the bathroom")
+            assert client.wait_for(lambda m: m.get("topic") == "/robot_pose", timeout=30) is not None
+            children = bridge.descendants()
+            code = bridge.stop(sig)
+            halted = client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"kind":"halt"' in m["data"], 10)
+
+    assert code == 0
+    assert len(children) == 4  # one daemon per skill family
+    assert not [c for c in children if alive(c)]
+    assert halted is not None  # the tree was halted, and the node still said so
+    assert bridge.out.lines[-1] == "ros bridge: stopped; every daemon stopped"
+
+
+def test_a_subscriber_that_disappears_mid_mission_does_not_disturb_the_bridge():
+    with BridgeProcess("--backend", "dry", "--speed", "5") as bridge:
+        bridge.up()
+        with RosClient() as first:
+            first.publish("stuart/mission", "go to the bathroom")
+            assert first.wait_for(lambda m: m.get("topic") == "/robot_pose", timeout=30) is not None
+            first.proc.kill()  # gone without a goodbye while poses and events stream to it
+            first.proc.wait()
+        with RosClient() as second:
+            second.publish("audio_msg", "Hey Stuart, go to the kitchen instead")
+            said = second.wait_for(lambda m: m.get("topic") == "/llm/response"
+                                   and m["data"] == "Navigating to the kitchen", timeout=60)
+        assert bridge.stop() == 0
+
+    assert said is not None
+    assert [(i["action"], i["target"]) for i in intents(second)] == [("navigate_to_marker", "kitchen")]
+
+
+def test_a_bad_namespace_or_domain_is_one_clear_line_and_nothing_starts():
+    bad_ns = BridgeProcess("--namespace", "lab robot!")
+    bad_domain = BridgeProcess(env={**ros_env(), "ROS_DOMAIN_ID": "900"})
+    assert (bad_ns.proc.wait(60), bad_domain.proc.wait(60)) == (1, 1)
+    bad_ns.err.wait_for(lambda x: True, 5)
+    bad_domain.err.wait_for(lambda x: True, 5)
+
+    assert len(bad_ns.err.lines) == 1 and bad_ns.err.lines[0].startswith("stuart-bt: bad --namespace 'lab robot!': ")
+    assert bad_ns.err.lines[0].endswith("(try '/lab_robot_')")
+    assert bad_domain.err.lines == ["stuart-bt: ROS_DOMAIN_ID must be a whole number from 0 to 232, not '900'"]
+    assert bad_ns.out.lines == bad_domain.out.lines == []  # no node, no daemons

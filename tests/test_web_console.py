@@ -1,0 +1,58 @@
+"""The mission console in a real browser: an utterance typed starts a mission; the page shows how
+it was heard, the queue, the compiled plan and what the robot says; stop and continue."""
+
+from __future__ import annotations
+
+import pytest
+
+from web_support import Served, chromium_page, screenshot
+
+playwright = pytest.importorskip("playwright.sync_api", reason="the browser tests need playwright (make test installs it)")
+pytest.importorskip("starlette", reason="the web view needs the web extra")
+
+pytestmark = pytest.mark.slow
+WAIT = 60_000
+
+
+@pytest.fixture
+def page(tmp_path):
+    yield from chromium_page(playwright, tmp_path)
+
+
+def say(page, text: str) -> None:
+    page.fill("#say-input", text)
+    page.press("#say-input", "Enter")
+
+
+def test_an_utterance_typed_in_the_console_starts_a_mission(page):
+    with Served("--mission", "--backend", "dry", "--speed", "5") as served:  # slow enough to stop a walk
+        page.goto(served.url + "#console")
+        page.wait_for_selector("#conn.ok")
+        say(page, "Hey Stuart, go to the kitchen and wave")
+        page.wait_for_selector('#queue-table tr[data-mission="1"]', timeout=WAIT)
+        log = page.locator("#console-log")
+        log.locator("li.heard").first.wait_for()
+        assert "navigate_to_marker(target=kitchen)" in log.locator("li.heard").first.text_content()
+        page.wait_for_selector('#queue-table tr[data-mission="1"][data-status="succeeded"]', timeout=WAIT)
+        assert "navigate go_to marker=kitchen" in page.text_content("#plan-view")
+        assert "Navigating to the kitchen" in log.text_content()
+        assert page.input_value("#say-input") == ""  # sent, ready for the next one
+        screenshot(page, "console")
+
+        say(page, "Hey Stuart, go to the bathroom")
+        page.wait_for_selector('#queue-table tr[data-mission="2"][data-status="running"]', timeout=WAIT)
+        page.click("#btn-stop")
+        page.wait_for_selector('#queue-table tr[data-mission="2"][data-status="stopped"]', timeout=WAIT)
+        page.wait_for_function("document.getElementById('btn-continue').disabled === false", timeout=WAIT)
+        page.click("#btn-continue")
+        page.wait_for_selector('#queue-table tr[data-mission="2"][data-status="succeeded"]', timeout=WAIT)
+
+
+def test_an_empty_utterance_is_refused_with_one_sentence(page):
+    with Served("--mission", "--backend", "dry", "--speed", "20") as served:
+        page.goto(served.url + "#console")
+        page.wait_for_selector("#conn.ok")
+        say(page, "   ")
+        assert page.locator("#console-log li").count() == 0
+        response = page.request.post(served.url + "api/say", data={"text": ""})
+        assert response.status == 400 and response.json() == {"error": "type something to say"}
