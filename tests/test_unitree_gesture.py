@@ -65,12 +65,13 @@ def test_an_action_the_service_does_not_know_is_unknown_gesture_7402(robot, gest
 
 
 def test_a_recorded_gesture_streams_50_hz_targets_with_the_blend_ramp_and_the_crc(robot, gesture):
-    before = len(robot.topic("rt/arm_sdk"))
+    before, mark = len(robot.topic("rt/arm_sdk")), len(robot.records)
     frames = [{"t": 0.0, "joints": {"right_shoulder_pitch_joint": 0.0}},
               {"t": 1.0, "joints": {"right_shoulder_pitch_joint": -1.0}}]
     result = play(gesture, keyframes=frames)
     assert result.ok, result.reason
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out's last sample")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out's last sample",
+                   since=mark)
     samples = robot.topic("rt/arm_sdk")[before:]
     weights = [s["weight"] for s in samples]
     assert all(s["crc_ok"] for s in samples)

@@ -106,8 +106,9 @@ def test_pause_and_resume_reach_the_navigation_service(robot, loco):
     sup = loco()
     client = sup.client("loco")
     here = run(sup, "state").result["pose"]
+    mark = len(robot.records)
     walk = client.request("navigate", {"pose": {"x": here["x"] + 8.0, "y": here["y"], "yaw": None}})
-    robot.wait_for(lambda r: r.get("api") == 1102, what="the navigation goal")
+    robot.wait_for(lambda r: r.get("api") == 1102, what="the navigation goal", since=mark)
     assert run(sup, "pause").result == {"paused": True}
     assert run(sup, "resume").result == {"paused": False}
     assert sup.wait(walk, timeout=20).ok

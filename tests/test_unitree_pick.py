@@ -50,10 +50,11 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     hands = robot.topic("rt/dex3/right/cmd")[before_hand:]
     assert max(abs(q) for q in hands[0]["q"]) == 0.0 and max(abs(q) for q in hands[-1]["q"]) > 0.3  # open, then closed
 
-    before_arm = len(robot.topic("rt/arm_sdk"))
+    before_arm, mark = len(robot.topic("rt/arm_sdk")), len(robot.records)
     put = request(pick, "release", robot_pose=HERE)
     assert pick.wait(put, timeout=20).ok, put.reason
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out",
+                   since=mark)
     samples = robot.topic("rt/arm_sdk")[before_arm:]
     assert samples[0]["weight"] == 1.0 and samples[-1]["weight"] == 0.0
     assert put.result["position"]["z"] == pytest.approx(0.95, abs=0.01)
@@ -68,10 +69,13 @@ def test_an_object_out_of_reach_is_refused_before_anything_moves(robot, pick):
 
 
 def test_stopping_a_pick_blends_the_arm_back_to_the_controller(robot, pick):
+    mark = len(robot.records)
     grasp = request(pick, "pick", object="bottle", robot_pose=HERE)
     pick.wait(request(pick, "confirm"), timeout=5)
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] > 0.5, what="the arm blended in")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] > 0.5, what="the arm blended in",
+                   since=mark)
     assert pick.wait(request(pick, "stop"), timeout=5).ok
     assert grasp.error_code == "stopped"
-    last = robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    last = robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out",
+                          since=mark)
     assert last["crc_ok"]

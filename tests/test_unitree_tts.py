@@ -54,8 +54,9 @@ def test_local_speech_streams_16_khz_int16_in_three_second_chunks(robot, tts):
 def test_cancelling_streamed_speech_sends_play_stop(robot, tts):
     sup = tts(factor=1.0, engine="espeak-ng")
     client = sup.client("tts")
+    mark = len(robot.records)
     request = client.request("say", {"text": "A long sentence that will be cut short by a cancel from the tree."})
-    robot.wait_for(lambda r: r.get("api") == 1003, what="the first chunk")
+    robot.wait_for(lambda r: r.get("api") == 1003, what="the first chunk", since=mark)
     sup.wait(client.request("cancel", {"target": request.id}), timeout=5)
     assert request.error_code == "cancelled"
     assert robot.rpc("voice", 1004)[-1]["parameter"] == {"app_name": "stuart_bt"}

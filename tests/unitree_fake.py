@@ -35,6 +35,7 @@ class FakeRobot:
         self.domain = private_domain() if domain is None else domain
         self.records: list[dict[str, Any]] = []
         self._lock = threading.Lock()
+        self._pings = 0
         self.proc = subprocess.Popen(
             [sys.executable, str(FAKE), "--domain", str(self.domain), "--nav-speed", str(nav_speed),
              "--silent", silent],
@@ -57,12 +58,24 @@ class FakeRobot:
             with self._lock:
                 self.records.append(record)
 
+    def sync(self) -> None:
+        """Wait until every request the fake answered so far has been read here (its records
+        are written before its answers, and a pong after them)."""
+        self._pings += 1
+        n, mark = self._pings, len(self.records)
+        self.order(ping=n)
+        self.wait_for(lambda r: r["kind"] == "pong" and r["n"] == n, what="the fake's pong", since=mark)
+
     def rpc(self, service: str | None = None, api: int | None = None) -> list[dict[str, Any]]:
+        """Requests the fake answered (up to now: synced first)."""
+        self.sync()
         with self._lock:
             return [r for r in self.records if r["kind"] == "rpc" and service in (None, r["service"])
                     and api in (None, r["api"])]
 
     def topic(self, name: str) -> list[dict[str, Any]]:
+        """Samples the fake received on ``name`` (up to now: synced first)."""
+        self.sync()
         with self._lock:
             return [r for r in self.records if r["kind"] == "topic" and r["topic"] == name]
 
@@ -78,9 +91,10 @@ class FakeRobot:
         self.order(fault=spec)
 
     def wait_for(self, predicate: Callable[[dict[str, Any]], bool], timeout: float = 10.0,
-                 what: str = "a record") -> dict[str, Any]:
+                 what: str = "a record", since: int = 0) -> dict[str, Any]:
+        """The first record from index ``since`` on that satisfies ``predicate``."""
         deadline = time.monotonic() + timeout
-        seen = 0
+        seen = since
         while time.monotonic() < deadline:
             with self._lock:
                 fresh = self.records[seen:]

@@ -8,8 +8,8 @@ planned motion with the ``confirm`` command), the arm is blended in and moves: a
 descend, close the hand, lift, and holds. A release lowers back to the grasp height, opens the
 hand, retracts to the neutral pose and blends the arm back to the walking controller.
 
-Objects come from the ``objects`` option or skills/objects.json (until perception feeds a
-memory); the robot's pose comes with every request.
+An object's position comes with the request when perception placed it, else from the
+``objects`` option or skills/objects.json; the robot's pose comes with every request.
 
 Options (besides the link settings in :mod:`stuart_bt.skills.vendor`): ``objects``, ``solver``
 (pin | placo, default pin), ``confirm`` (default true), ``ramp`` (0.5 s blend ramp),
@@ -109,13 +109,14 @@ class UnitreePick(DryPick):
         return {j: desc.NEUTRAL[j] for side in desc.SIDES for j in desc.arm_joints(side)}
 
     # -- planning ---------------------------------------------------------------------------------
-    def pick(self, label: str, arm: str, robot_pose: Pose) -> Activity:
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
+        """``position``: where perception placed the object (map frame); else the object table's."""
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        position = self._known(label)
-        target = world_to_torso(np.array([position.x, position.y, position.z + self.grasp_dz]), robot_pose)
-        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, position) >= 0 else "right")
+        spot = Position(**position) if position is not None else self._known(label)
+        target = world_to_torso(np.array([spot.x, spot.y, spot.z + self.grasp_dz]), robot_pose)
+        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, spot) >= 0 else "right")
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         solutions = self._solve(label, side, points, target)
         open_hand, closed = hand(side, "open"), hand(side, "grip")
@@ -130,6 +131,7 @@ class UnitreePick(DryPick):
 
         def finish() -> dict[str, Any]:
             self._grasp = {"side": side, "target": target, "solutions": solutions}
+            self.objects[label] = spot  # the table learns where perception saw it
             return {"object": label, "arm": side, "position": self.take(label, side).to_dict()}
 
         return ArmPhases(self, phases, finish, self.gate, planned, release_at_end=False)

@@ -14,6 +14,7 @@ topic) for the test to assert on. stdin takes JSON lines that script faults::
     {"fault": {"service": "arm", "api": 7106, "code": 7400, "times": 1}}   # answer with an error
     {"fault": {"service": "slam_operate", "api": 1102, "silent": true}}    # no answer: a timeout
     {"arrive": false}                                                      # navigation gives up
+    {"ping": 7}                                                            # answered with a "pong" record
 """
 
 from __future__ import annotations
@@ -260,6 +261,8 @@ def _control(stream: Any, robot: Robot) -> None:
             order = json.loads(line)
         except ValueError:
             continue
+        if "ping" in order:  # every request the fake answered before this is already recorded
+            robot.record(kind="pong", n=order["ping"])
         with robot.lock:
             if "fault" in order:
                 robot.faults.append(dict(order["fault"]))
