@@ -217,8 +217,11 @@ def main(argv: list[str] | None = None) -> int:
     for service in filter(None, args.silent.split(",")):
         robot.faults.append({"service": service, "silent": True, "times": 10**9})
     ChannelFactoryInitialize(args.domain, args.interface)
-    for name in VERSIONS:
-        FakeService(name, robot)._Start(False)
+    starting = [threading.Thread(target=FakeService(name, robot)._Start, args=(False,)) for name in VERSIONS]
+    for thread in starting:  # each server start waits half a second: together, not one after another
+        thread.start()
+    for thread in starting:
+        thread.join()
     odom = ChannelPublisher("rt/unitree/slam_relocation/odom", Odometry_)
     odom.Init()
     key_info = ChannelPublisher("rt/slam_key_info", String_)
