@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+import socket
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -129,13 +130,7 @@ def connect(link: Link) -> None:
 
 
 def _interfaces() -> set[str]:
-    return {name for _, name in _if_nameindex()}
-
-
-def _if_nameindex() -> list[tuple[int, str]]:
-    import socket
-
-    return socket.if_nameindex()
+    return {name for _, name in socket.if_nameindex()}
 
 
 def ready_client(client: Client, service: str, link: Link) -> Client:

@@ -58,6 +58,13 @@ def test_a_busy_arm_fails_with_7400_and_a_readable_reason(robot, gesture):
     assert "the arm is busy" in result.reason
 
 
+def test_a_pose_held_elsewhere_fails_with_7401_and_says_to_release(robot, gesture):
+    robot.fault("arm", 7106, 7401)  # held by someone else (the remote, the app): the daemon did not know
+    result = play(gesture, name="clap")
+    assert (result.error_code, result.vendor_code) == ("backend_error", 7401)
+    assert "release it (release arm, action 99) first" in result.reason
+
+
 def test_an_action_the_service_does_not_know_is_unknown_gesture_7402(robot, gesture):
     robot.fault("arm", 7106, 7402)
     result = play(gesture, name="x-ray")
@@ -82,7 +89,8 @@ def test_a_recorded_gesture_streams_50_hz_targets_with_the_blend_ramp_and_the_cr
     assert weights[peak:] == sorted(weights[peak:], reverse=True) and weights[-1] == 0.0
     shoulder = [s["q"]["22"] for s in samples]  # right shoulder pitch is motor 22
     assert shoulder[0] == 0.0 and shoulder[-1] == pytest.approx(-1.0)
-    assert all(s["kp"]["22"] > 0 for s in samples)
+    # every arm motor is commanded (the unnamed ones at rest): none is left limp at kp = 0
+    assert all(s["kp"][str(motor)] > 0 for s in samples for motor in range(15, 29))
 
 
 def test_a_recorded_gesture_beyond_the_joint_limits_is_refused_before_anything_moves(robot, gesture):

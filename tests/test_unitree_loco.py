@@ -137,3 +137,11 @@ def test_a_silent_service_refuses_ready_naming_service_interface_and_domain(tmp_
         message = start_failure("loco", silent.options(probe_timeout=0.5), tmp_path)
     assert "'sport' service does not answer on interface lo, DDS domain" in message
     assert str(silent.domain) in message
+
+
+def test_a_navigation_service_that_does_not_answer_fails_with_the_timeout_code(robot, loco):
+    sup = loco()
+    robot.fault("slam_operate", 1102, None)  # no answer at all
+    walk = run(sup, "navigate", pose={"x": 2.0, "y": 2.0, "yaw": None})
+    assert (walk.error_code, walk.vendor_code) == ("backend_error", 3104)
+    assert "did not answer in time" in walk.reason

@@ -6,11 +6,13 @@ Nothing here imports the vendor SDK: the fake runs in its own process, like the 
 
 from __future__ import annotations
 
+import fcntl
 import itertools
 import json
 import os
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -19,12 +21,23 @@ from typing import Any, Callable
 import pytest
 
 FAKE = Path(__file__).parent / "fakes" / "unitree_services.py"
-_domains = itertools.count((os.getpid() * 7) % 60)
+DOMAINS = range(160, 230)
+_start = itertools.count((os.getpid() * 7) % len(DOMAINS))
 
 
-def private_domain() -> int:
-    """A DDS domain id no other test (or helper's test run) is likely to use at the same time."""
-    return 160 + next(_domains) % 60
+def private_domain() -> tuple[int, Any]:
+    """A DDS domain id no other fake on this machine holds (any test run, any checkout): an
+    exclusive lock on a file per domain, held while the fake runs. Returns (domain, lock file)."""
+    first = next(_start)
+    for k in range(len(DOMAINS)):
+        domain = DOMAINS[(first + k) % len(DOMAINS)]
+        lock = open(Path(tempfile.gettempdir()) / f"stuart_bt-dds-domain-{domain}.lock", "w")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return domain, lock
+        except OSError:
+            lock.close()
+    raise RuntimeError(f"every test DDS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use")
 
 
 class FakeRobot:
@@ -32,7 +45,10 @@ class FakeRobot:
 
     def __init__(self, domain: int | None = None, nav_speed: float = 4.0, silent: str = "") -> None:
         pytest.importorskip("unitree_sdk2py", reason="the unitree backend needs the 'robot' extra")
-        self.domain = private_domain() if domain is None else domain
+        self._domain_lock = None
+        if domain is None:
+            domain, self._domain_lock = private_domain()
+        self.domain = domain
         self.records: list[dict[str, Any]] = []
         self._lock = threading.Lock()
         self._pings = 0
@@ -115,6 +131,8 @@ class FakeRobot:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait()
+        if self._domain_lock is not None:
+            self._domain_lock.close()  # the domain is free for the next fake
 
     def __enter__(self) -> "FakeRobot":
         return self

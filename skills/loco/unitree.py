@@ -223,11 +223,10 @@ class OdometryMove(Activity):
         if self.phase == "turn":
             if abs(self.turn_left) <= self.yaw_tolerance:
                 b.halt()
-                result = {"pose": pose.to_dict(), "marker": self.marker,
-                          "distance": round(self.start_pose.distance_to(pose), 4)}
                 if self.angle is not None:
-                    result = {"pose": pose.to_dict(), "angle": self.angle, "distance": 0.0}
-                return Done(result)
+                    return Done({"pose": pose.to_dict(), "angle": self.angle, "distance": 0.0})
+                return Done({"pose": pose.to_dict(), "marker": self.marker,
+                             "distance": round(self.start_pose.distance_to(pose), 4)})
             rate = min(max(TURN_GAIN * abs(self.turn_left), b.min_turn_rate), b.max_turn_rate)
             b.send_velocity(0.0, 0.0, math.copysign(rate, self.turn_left))
         if now >= self._next_report:
@@ -378,16 +377,24 @@ class UnitreeLoco(LocoBackend):
         with self._lock:
             return self._pose if self._pose is not None else self._start_pose
 
-    def fresh_pose(self, what: str) -> Pose:
-        """The odometry pose, or a stop and an error when it is missing or stale."""
+    def odometry_problem(self, what: str) -> str | None:
+        """Why the odometry cannot be trusted to ``what`` (missing or stale), or None."""
         with self._lock:
             pose, age = self._pose, time.monotonic() - self._pose_wall
-        if pose is None or age > self.odom_timeout:
+        if pose is None:
+            return (f"cannot {what}: no odometry on {ODOM_TOPIC} yet (relocalise first: "
+                    "stuart-bt map relocalise, or the loco 'map' option)")
+        if age > self.odom_timeout:
+            return f"cannot {what}: the odometry on {ODOM_TOPIC} is {age:.1f} s old"
+        return None
+
+    def fresh_pose(self, what: str) -> Pose:
+        """The odometry pose, or a stop and an error when it is missing or stale."""
+        problem = self.odometry_problem(what)
+        if problem is not None:
             self.halt()
-            heard = "never arrived (relocalise first)" if pose is None else f"is {age:.1f} s old"
-            raise DaemonError("backend_error", f"cannot {what}: the odometry on {ODOM_TOPIC} {heard}; stopped",
-                              data={"pose": self.pose().to_dict()})
-        return pose
+            raise DaemonError("backend_error", f"{problem}; stopped", data={"pose": self.pose().to_dict()})
+        return self.pose()
 
     def send_velocity(self, vx: float, vy: float, omega: float) -> None:
         vendor.check(self.loco.SetVelocity(round(vx, 4), round(vy, 4), round(omega, 4), self.command_duration),
@@ -410,6 +417,9 @@ class UnitreeLoco(LocoBackend):
 
     def _map_walk(self, goal: NavigateGoal) -> MapWalk:
         assert isinstance(goal.target, MapGoal)
+        problem = self.odometry_problem("navigate")
+        if problem is not None:
+            raise DaemonError("backend_error", problem, data={"pose": self.pose().to_dict()})
         start = self.pose()
         gx, gy, gyaw = goal_pose(start, goal.target)
         route = [(start.x, start.y), (gx, gy)]

@@ -27,7 +27,7 @@ from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.skills import vendor
-from stuart_bt.skills.arm_stream import ArmStreamer, Targets
+from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
 from stuart_bt.skills.gesture.keyframes import hand
 from stuart_bt.world import Pose
 
@@ -106,7 +106,7 @@ class UnitreePick(DryPick):
         return {**super().commands(), "confirm": self._confirm_command}
 
     def neutral(self) -> Targets:
-        return {j: desc.NEUTRAL[j] for side in desc.SIDES for j in desc.arm_joints(side)}
+        return dict(ARM_REST)
 
     # -- planning ---------------------------------------------------------------------------------
     def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
