@@ -74,7 +74,7 @@ def _one_round(robot, gaps: list[float]) -> float:
 
 def run(quick: bool) -> list[Result]:
     fake = _fake_module()
-    rounds = 2 if quick else 15
+    rounds = 1 if quick else 15
     stops: list[float] = []
     gaps: list[float] = []
     with fake.FakeRobot() as robot:

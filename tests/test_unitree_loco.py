@@ -145,3 +145,11 @@ def test_a_navigation_service_that_does_not_answer_fails_with_the_timeout_code(r
     walk = run(sup, "navigate", pose={"x": 2.0, "y": 2.0, "yaw": None})
     assert (walk.error_code, walk.vendor_code) == ("backend_error", 3104)
     assert "did not answer in time" in walk.reason
+
+
+def test_older_firmware_uses_the_loco_service_and_start_fsm_200(robot, loco):
+    sport_before = len(robot.rpc("sport", 7105))
+    sup = loco(firmware="loco", stand_up=True)
+    assert robot.rpc("loco", 7101)[-1]["parameter"] == {"data": 200}
+    assert run(sup, "turn", angle=0.5).ok
+    assert robot.rpc("loco", 7105) and len(robot.rpc("sport", 7105)) == sport_before

@@ -100,3 +100,24 @@ def test_killing_the_tree_process_makes_the_loco_daemon_stop_the_robot(tmp_path)
         print(f"stop arrived {stop['t'] - moves[-1]['t']:.3f} s after the last motion command")
         late = [r for r in moves if r["t"] > stop["t"]]
         assert late == []  # nothing moved the robot again after the stop
+
+
+def test_a_daemon_options_file_reaches_the_daemons(tmp_path):
+    options = tmp_path / "robot.yaml"
+    options.write_text("tts:\n  volume: 55\ngesture:\n  ramp: 0.3\n")
+    with FakeRobot() as robot:
+        run = subprocess.run([*CLI, "run", "trees/greet.yaml", "--backend", "unitree", "--speed", "10", "--view", "none",
+                              "--daemon-options", str(options)], cwd=REPO, env=robot.env, capture_output=True,
+                             text=True, timeout=120)
+        assert run.returncode == 0, run.stderr[-2000:]
+        assert robot.rpc("voice", 1006)[-1]["parameter"] == {"volume": 55}
+
+
+def test_a_daemon_options_file_naming_no_family_is_one_message(tmp_path):
+    options = tmp_path / "robot.yaml"
+    options.write_text("tss:\n  volume: 55\n")
+    run = subprocess.run([*CLI, "run", "trees/greet.yaml", "--backend", "unitree", "--daemon-options", str(options)],
+                         cwd=REPO, capture_output=True, text=True, timeout=60)
+    assert run.returncode == 1
+    assert run.stderr.strip() == (f"stuart-bt: --daemon-options {options}: unknown family 'tss' (did you mean 'tts'?); "
+                                  "families: loco, tts, gesture, pick, vision")
