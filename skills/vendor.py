@@ -23,8 +23,9 @@ from __future__ import annotations
 import json
 import os
 import socket
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from unitree_sdk2py.core.channel import ChannelFactoryInitialize, ChannelPublisher, ChannelSubscriber
 from unitree_sdk2py.rpc.client import Client
@@ -157,7 +158,7 @@ class ServiceClient(Client):
         self._version = version
         self._apis = apis
 
-    def Init(self) -> None:  # noqa: N802 (the SDK's naming)
+    def Init(self) -> None:
         self._SetApiVerson(self._version)
         for api in self._apis:
             self._RegistApi(api, 0)

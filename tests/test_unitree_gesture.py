@@ -4,9 +4,9 @@ hold / release-99 rule, vendor error codes, and recorded gestures streamed with 
 from __future__ import annotations
 
 import pytest
+from unitree_fake import FakeRobot, robot, unitree_daemon  # robot and unitree_daemon are fixtures
 
 from stuart_bt.daemon.supervisor import Supervisor
-from unitree_fake import FakeRobot, robot, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 

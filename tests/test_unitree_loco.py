@@ -6,9 +6,9 @@ from __future__ import annotations
 import math
 
 import pytest
+from unitree_fake import FakeRobot, robot, start_failure, unitree_daemon  # robot and unitree_daemon are fixtures
 
 from stuart_bt.daemon.supervisor import Supervisor
-from unitree_fake import FakeRobot, robot, start_failure, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 

@@ -4,10 +4,10 @@ gate, IK-planned targets within the limits, the hand closing, the release blendi
 from __future__ import annotations
 
 import pytest
+from stuart_bt.sim.robot import description as desc
+from unitree_fake import robot, unitree_daemon  # robot and unitree_daemon are fixtures
 
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.sim.robot import description as desc
-from unitree_fake import robot, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 pytest.importorskip("pinocchio", reason="the pick planner needs the 'ik' extra")

@@ -6,11 +6,13 @@ from __future__ import annotations
 import shutil
 
 import pytest
+from unitree_fake import robot, start_failure, unitree_daemon  # robot and unitree_daemon are fixtures
 
 from stuart_bt.daemon.supervisor import Supervisor
-from unitree_fake import robot, start_failure, unitree_daemon  # noqa: F401 (fixtures)
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
+NEEDS_ESPEAK = pytest.mark.skipif(shutil.which("espeak-ng") is None,
+                                  reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
 
 
 @pytest.fixture
@@ -34,7 +36,7 @@ def test_the_robot_voice_gets_the_text_and_speaker_and_the_tree_gets_a_duration(
     assert result.result["duration"] == result.accepted_data["duration"]
 
 
-@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
+@NEEDS_ESPEAK
 def test_local_speech_streams_16_khz_int16_in_three_second_chunks(robot, tts):
     sup = tts(engine="espeak-ng", lead_seconds=100.0)  # send every chunk at once: the test checks them all
     before = len(robot.rpc("voice", 1003))
@@ -50,7 +52,7 @@ def test_local_speech_streams_16_khz_int16_in_three_second_chunks(robot, tts):
     assert len({c["parameter"]["stream_id"] for c in chunks}) == 1
 
 
-@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
+@NEEDS_ESPEAK
 def test_cancelling_streamed_speech_sends_play_stop(robot, tts):
     sup = tts(factor=1.0, engine="espeak-ng")
     client = sup.client("tts")

@@ -15,8 +15,9 @@ import sys
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import pytest
 
@@ -134,7 +135,7 @@ class FakeRobot:
         if self._domain_lock is not None:
             self._domain_lock.close()  # the domain is free for the next fake
 
-    def __enter__(self) -> "FakeRobot":
+    def __enter__(self) -> FakeRobot:
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -18,14 +18,14 @@ from __future__ import annotations
 
 from typing import Any
 
+from stuart_bt.skills import vendor
+from stuart_bt.skills.arm_stream import ArmStreamer
 from unitree_sdk2py.g1.arm.g1_arm_action_client import G1ArmActionClient
 
 from stuart_bt import gestures
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
-from stuart_bt.skills import vendor
-from stuart_bt.skills.arm_stream import ArmStreamer
 
 from .backend import GestureBackend, Keyframe
 from .keyframes import validate_keyframes
@@ -39,7 +39,7 @@ class ActionSequence(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreeGesture", steps: list[gestures.Gesture], played: list[str]) -> None:
+    def __init__(self, backend: UnitreeGesture, steps: list[gestures.Gesture], played: list[str]) -> None:
         self.backend = backend
         self.steps = steps
         self.played = played
@@ -80,7 +80,7 @@ class StreamedGesture(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreeGesture", frames: list[Keyframe]) -> None:
+    def __init__(self, backend: UnitreeGesture, frames: list[Keyframe]) -> None:
         self.backend = backend
         self.frames = frames
 

@@ -30,6 +30,7 @@ import threading
 import time
 from typing import Any
 
+from stuart_bt.skills import vendor
 from unitree_sdk2py.g1.loco.g1_loco_client import LocoClient
 from unitree_sdk2py.idl.nav_msgs.msg.dds_ import Odometry_
 from unitree_sdk2py.idl.std_msgs.msg.dds_ import String_
@@ -38,7 +39,6 @@ from unitree_sdk2py.rpc.client import Client
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
-from stuart_bt.skills import vendor
 from stuart_bt.world import Pose
 
 from .backend import LocoBackend, MapGoal, NavigateGoal, RelativeGoal, goal_pose
@@ -81,7 +81,7 @@ class MapWalk(Activity):
     resource = "motion"
     report_every = 0.5
 
-    def __init__(self, backend: "UnitreeLoco", legs: list[tuple[float, float, float]], goal: NavigateGoal,
+    def __init__(self, backend: UnitreeLoco, legs: list[tuple[float, float, float]], goal: NavigateGoal,
                  length: float) -> None:
         self.backend = backend
         self.legs = legs
@@ -167,7 +167,7 @@ class OdometryMove(Activity):
     resource = "motion"
     report_every = 0.5
 
-    def __init__(self, backend: "UnitreeLoco", goal: RelativeGoal | None, angle: float | None,
+    def __init__(self, backend: UnitreeLoco, goal: RelativeGoal | None, angle: float | None,
                  tolerance: float, yaw_tolerance: float, marker: str | None) -> None:
         self.backend = backend
         self.goal = goal
@@ -244,7 +244,7 @@ class SlamCall(Activity):
 
     resource = None
 
-    def __init__(self, backend: "UnitreeLoco", what: str, api: int, data: dict[str, Any],
+    def __init__(self, backend: UnitreeLoco, what: str, api: int, data: dict[str, Any],
                  result: dict[str, Any], error: str = "backend_error") -> None:
         self.backend, self.what, self.api, self.data, self.result, self.error = backend, what, api, data, result, error
 
@@ -262,7 +262,7 @@ class SlamCall(Activity):
 class PauseWalk(Activity):
     resource = None
 
-    def __init__(self, backend: "UnitreeLoco", pause: bool) -> None:
+    def __init__(self, backend: UnitreeLoco, pause: bool) -> None:
         self.backend, self.pause = backend, pause
 
     def start(self, now: float) -> None:
@@ -289,17 +289,19 @@ class UnitreeLoco(LocoBackend):
         super().__init__(clock, options)
         self.link = vendor.link_from(options, "loco", OWN_OPTIONS)
         where = "loco unitree options"
-        num = lambda key, default, minimum=0.0: vendor.startup_option(  # noqa: E731
+        num = lambda key, default, minimum=0.0: vendor.startup_option(
             lambda: a.number(options, key, where, default=default, minimum=minimum))
         self.max_leg = num("max_leg", 10.0, 0.5)
         self.max_speed, self.min_speed = num("max_speed", 0.5, 0.05), num("min_speed", 0.3, 0.0)
         self.max_lateral_speed = num("max_lateral_speed", 0.3, 0.05)
         self.max_turn_rate, self.min_turn_rate = num("max_turn_rate", 0.6, 0.05), num("min_turn_rate", 0.25, 0.0)
-        self.control_period, self.command_duration = num("control_period", 0.05, 0.01), num("command_duration", 0.3, 0.05)
+        self.control_period = num("control_period", 0.05, 0.01)
+        self.command_duration = num("command_duration", 0.3, 0.05)
         self.odom_timeout, self.arrival_tolerance = num("odom_timeout", 1.0, 0.05), num("arrival_tolerance", 0.5, 0.0)
         self.leg_timeout = num("leg_timeout", 60.0, 1.0)
-        if self.min_speed > self.max_speed or self.min_turn_rate > self.max_turn_rate:
-            raise vendor.StartupError("loco unitree options: min_speed/min_turn_rate must not exceed the maxima")
+        if not self.min_speed <= min(self.max_speed, self.max_lateral_speed) or self.min_turn_rate > self.max_turn_rate:
+            raise vendor.StartupError(f"{where}: min_speed must not exceed max_speed or max_lateral_speed, nor "
+                                      "min_turn_rate max_turn_rate (below the dead band the robot does not move)")
         self._start_pose = vendor.startup_option(lambda: a.pose(options, "start_pose", where)) \
             if "start_pose" in options else Pose()
         self.grid = None
@@ -322,7 +324,11 @@ class UnitreeLoco(LocoBackend):
         if options.get("slam", True):
             self.slam = vendor.ready_client(vendor.ServiceClient(SLAM, SLAM_VERSION, SLAM_APIS), SLAM, self.link)
         if options.get("stand_up"):
-            vendor.check(self.loco.SetFsmId(self.link.start_fsm), self.link.loco_service, "Start")
+            code = self.loco.SetFsmId(self.link.start_fsm)
+            if code != 0:
+                raise vendor.StartupError(f"Start (FSM {self.link.start_fsm}) failed: vendor code {code} "
+                                          f"({vendor.describe(code)}) from {self.link.loco_service} "
+                                          f"on {self.link.where()}")
         if options.get("map"):
             self._relocalise_at_start(str(options["map"]))
 

@@ -21,14 +21,14 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-
-from stuart_bt.clock import Clock
-from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.skills import vendor
 from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
 from stuart_bt.skills.gesture.keyframes import hand
+
+from stuart_bt.clock import Clock
+from stuart_bt.daemon import args as a
+from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.world import Pose
 
 from .dry import DryPick, Position, _lateral
@@ -44,7 +44,7 @@ class ArmPhases(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreePick", phases: list[Phase], finish: Any, gate: bool,
+    def __init__(self, backend: UnitreePick, phases: list[Phase], finish: Any, gate: bool,
                  planned: dict[str, Any], release_at_end: bool) -> None:
         self.backend = backend
         self.phases = phases
