@@ -13,16 +13,17 @@ processes: it imports the vendor SDK).
 
 from __future__ import annotations
 
-import threading
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass
+import threading
+import time
 
-from stuart_bt.sim.robot import description as desc
-from stuart_bt.skills import vendor
 from unitree_sdk2py.idl.default import unitree_hg_msg_dds__HandCmd_, unitree_hg_msg_dds__LowCmd_
 from unitree_sdk2py.idl.unitree_hg.msg.dds_ import HandCmd_, LowCmd_
 from unitree_sdk2py.utils.crc import CRC
+
+from stuart_bt.sim.robot import description as desc
+from stuart_bt.skills import vendor
 
 ARM_SDK_TOPIC = "rt/arm_sdk"
 HAND_TOPIC = "rt/dex3/{side}/cmd"

@@ -18,14 +18,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from stuart_bt.skills import vendor
-from stuart_bt.skills.arm_stream import ArmStreamer
 from unitree_sdk2py.g1.arm.g1_arm_action_client import G1ArmActionClient
 
 from stuart_bt import gestures
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
+from stuart_bt.skills import vendor
+from stuart_bt.skills.arm_stream import ArmStreamer
 
 from .backend import GestureBackend, Keyframe
 from .keyframes import validate_keyframes

@@ -8,8 +8,8 @@ planned motion with the ``confirm`` command), the arm is blended in and moves: a
 descend, close the hand, lift, and holds. A release lowers back to the grasp height, opens the
 hand, retracts to the neutral pose and blends the arm back to the walking controller.
 
-An object's position comes with the request when perception placed it, else from the
-``objects`` option or skills/objects.json; the robot's pose comes with every request.
+Objects come from the request's ``position`` (where perception saw them), else the ``objects``
+option or skills/objects.json; the robot's pose comes with every request.
 
 Options (besides the link settings in :mod:`stuart_bt.skills.vendor`): ``objects``, ``solver``
 (pin | placo, default pin), ``confirm`` (default true), ``ramp`` (0.5 s blend ramp),
@@ -21,14 +21,14 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from stuart_bt.sim.robot import description as desc
-from stuart_bt.skills import vendor
-from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
-from stuart_bt.skills.gesture.keyframes import hand
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
+from stuart_bt.sim.robot import description as desc
+from stuart_bt.skills import vendor
+from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
+from stuart_bt.skills.gesture.keyframes import hand
 from stuart_bt.world import Pose
 
 from .dry import DryPick, Position, _lateral
@@ -110,13 +110,12 @@ class UnitreePick(DryPick):
 
     # -- planning ---------------------------------------------------------------------------------
     def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
-        """``position``: where perception placed the object (map frame); else the object table's."""
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        spot = Position(**position) if position is not None else self._known(label)
-        target = world_to_torso(np.array([spot.x, spot.y, spot.z + self.grasp_dz]), robot_pose)
-        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, spot) >= 0 else "right")
+        position = self._aim(label, position)
+        target = world_to_torso(np.array([position.x, position.y, position.z + self.grasp_dz]), robot_pose)
+        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, position) >= 0 else "right")
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         solutions = self._solve(label, side, points, target)
         open_hand, closed = hand(side, "open"), hand(side, "grip")
@@ -131,7 +130,6 @@ class UnitreePick(DryPick):
 
         def finish() -> dict[str, Any]:
             self._grasp = {"side": side, "target": target, "solutions": solutions}
-            self.objects[label] = spot  # the table learns where perception saw it
             return {"object": label, "arm": side, "position": self.take(label, side).to_dict()}
 
         return ArmPhases(self, phases, finish, self.gate, planned, release_at_end=False)

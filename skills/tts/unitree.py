@@ -16,19 +16,19 @@ English voice), ``piper_model`` (a local piper voice file; piper needs it), ``vo
 
 from __future__ import annotations
 
+from pathlib import Path
 import shutil
 import tempfile
-import wave
-from pathlib import Path
 from typing import Any
+import wave
 
 import numpy as np
-from stuart_bt.skills import vendor
 from unitree_sdk2py.g1.audio.g1_audio_client import AudioClient
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import DaemonError, StartupError
+from stuart_bt.skills import vendor
 
 from .dry import DryTts, Utterance, speaking_time
 from .speech import SynthesisError, Synthesizer
