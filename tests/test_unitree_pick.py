@@ -38,7 +38,10 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     assert grasp.result["object"] == "bottle" and grasp.result["arm"] == "right"
     samples = robot.topic("rt/arm_sdk")[before_arm:]
     assert all(s["crc_ok"] for s in samples)
-    assert samples[0]["weight"] < 0.1 and samples[-1]["weight"] == 1.0  # blended in, holding
+    weights = [s["weight"] for s in samples]
+    full = weights.index(1.0)
+    assert 0 < full and weights[:full] == sorted(weights[:full]) and weights[0] < 0.5  # ramped in, not jumped
+    assert samples[-1]["weight"] == 1.0  # holding
     limits = desc.arm_limits("right")
     for motor, joint in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")):
         low, high = limits[joint]
@@ -48,7 +51,9 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     assert any(abs(lifted[str(m)] - desc.NEUTRAL[j]) > 0.1 for m, j in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")))
     assert set(planned) == set(desc.arm_joints("right"))
     hands = robot.topic("rt/dex3/right/cmd")[before_hand:]
-    assert max(abs(q) for q in hands[0]["q"]) == 0.0 and max(abs(q) for q in hands[-1]["q"]) > 0.3  # open, then closed
+    grip = [max(abs(q) for q in h["q"]) for h in hands]
+    assert 0.0 in grip  # open while approaching ...
+    assert grip[-1] > 0.3 and grip.index(grip[-1]) > grip.index(0.0)  # ... then closed
 
     before_arm, mark = len(robot.topic("rt/arm_sdk")), len(robot.records)
     put = request(pick, "release", robot_pose=HERE)
