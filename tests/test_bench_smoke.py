@@ -40,6 +40,7 @@ EXPECTED = [
     *(f"perception.{figure}" for figure in ("position.error_mean", "position.error_max", "pipeline.rate", "render.fps",
                                             "tour.real_time_factor_with_vision")),
     "web.tick_overhead.flip-10", "web.tick_overhead.flip-100", "web.latency.p50", "web.latency.p99",
+    "unitree.stop_after_tree_loss.p50", "unitree.stop_after_tree_loss.p99", "unitree.command_gap.p99",
 ]
 
 
