@@ -2,7 +2,7 @@
 
 Project domain (tasks/domain.yaml with tasks/hooks.py) from the lab start state the CLI uses
 (sim/maps/lab_markers.json, skills/objects.json, robot at the entrance): one plan per intent
-and mission, and a compound utterance (``do_all`` of nine intents) that plans to 20 steps. Each
+and mission, and a compound utterance (``do_all`` of eight intents) that plans to 20 steps. Each
 figure is the median time of one ``Planner.plan()`` call (task text parsed, tree built, every
 rejection recorded). Goal: <= 5 ms each.
 
@@ -47,7 +47,7 @@ MISSIONS = {
     "greet": "greet",
     "go_and_say": "go_and_say(kitchen, 'Lunch is ready')",
 }
-COMPOUND_20 = ("do_all([navigate_to_marker(kitchen), pick_up(bottle), navigate_to_marker(workbench), turn_around, "
+COMPOUND_20 = ("do_all([navigate_to_marker(kitchen), pick_up(bottle), navigate_to_marker(workbench), "
                "move_relative(0.5, 0, 0), find(cup), go_and_say(station_1, 'Hello there'), "
                "navigate_to_marker(charging_dock), stop])")
 

@@ -34,6 +34,9 @@ from typing import IO, Any, Callable
 from .clock import Clock
 
 
+ENVELOPE = ("t", "wall", "kind", "path")  # an event's own fields in its flat dict form
+
+
 @dataclass(frozen=True)
 class Event:
     """One thing that happened. ``t`` is clock time, ``wall`` is Unix time."""
@@ -45,10 +48,13 @@ class Event:
     wall: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"t": round(self.t, 6), "wall": round(self.wall, 6), "kind": self.kind}
+        """Flat: the envelope (t, wall, kind, path) and the data keys side by side. A data key
+        that would hide an envelope field (the ``utterance`` event's ``kind``: tasks, stop, ...)
+        is written as ``data_<key>``; :meth:`from_dict` reads it back."""
+        out: dict[str, Any] = {f"data_{k}" if k in ENVELOPE else k: v for k, v in self.data.items()}
+        out.update({"t": round(self.t, 6), "wall": round(self.wall, 6), "kind": self.kind})
         if self.path is not None:
             out["path"] = self.path
-        out.update(self.data)
         return out
 
     def to_json(self) -> str:
@@ -56,7 +62,10 @@ class Event:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "Event":
-        data = {k: v for k, v in d.items() if k not in ("t", "wall", "kind", "path")}
+        data = {k: v for k, v in d.items() if k not in ENVELOPE}
+        for key in ENVELOPE:
+            if f"data_{key}" in data:
+                data[key] = data.pop(f"data_{key}")
         return cls(t=d.get("t", 0.0), kind=d["kind"], path=d.get("path"), data=data, wall=d.get("wall", 0.0))
 
 

@@ -23,7 +23,6 @@ from typing import Any, Iterable
 from ..events import Event, EventStream, _json_default
 from ..snapshot import TreeSnapshot
 
-RESERVED = ("t", "wall", "kind", "path")  # an event's own fields in its JSON form
 FLUSH_EVERY = 0.015  # seconds between two pushes to the browsers
 HISTORY = 50_000  # events a late browser receives (the tour has ~3000 status changes)
 CLIENT_QUEUE = 2_000  # batches a client may fall behind before it is told to resync
@@ -133,21 +132,9 @@ class EventHub:
 
 
 def wire(event: Event) -> dict[str, Any]:
-    """The event as the page receives it: ``Event.to_dict``, except that a data key that would
-    overwrite one of the event's own fields (the ``utterance`` event's ``kind``: tasks, stop, ...)
-    arrives as ``data_<key>`` instead, so the page always sees the true event kind."""
-    item = event.to_dict()
-    clashes = [k for k in event.data if k in RESERVED]
-    for key in clashes:
-        item["data_" + key] = event.data[key]
-    if clashes:
-        item["kind"] = event.kind
-        item["t"], item["wall"] = round(event.t, 6), round(event.wall, 6)
-        if event.path is not None:
-            item["path"] = event.path
-        else:
-            item.pop("path", None)
-    return item
+    """The event as the page receives it: ``Event.to_dict`` (a data key that would hide the
+    event's own kind, like the ``utterance`` event's ``kind``, arrives as ``data_kind``)."""
+    return event.to_dict()
 
 
 def _frozen(data: dict[str, Any]) -> dict[str, Any]:
