@@ -23,6 +23,7 @@ from __future__ import annotations
 import json
 import os
 import socket
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -136,10 +137,16 @@ def _interfaces() -> set[str]:
 
 def ready_client(client: Client, service: str, link: Link) -> Client:
     """``client`` initialised and proven: its service answered the SDK's api-version request
-    within ``probe_timeout``, else the daemon refuses to start, naming service and network."""
+    within ``probe_timeout`` (asked again until then), else the daemon refuses to start, naming
+    service and network."""
     client.Init()
-    client.SetTimeout(link.probe_timeout)
-    code, _version = client.GetServerApiVersion()
+    deadline = time.monotonic() + link.probe_timeout
+    while True:  # DDS discovery takes a moment: a request sent before the service is matched is lost
+        client.SetTimeout(max(0.05, min(0.5, deadline - time.monotonic())))
+        code, _version = client.GetServerApiVersion()
+        if code == 0 or time.monotonic() >= deadline:
+            break
+        time.sleep(0.05)
     if code != 0:
         raise StartupError(f"the robot's {service!r} service does not answer on {link.where()} "
                            f"(vendor code {code}: {describe(code)}); is the robot on and its service running, "

@@ -28,9 +28,8 @@ def intents(client: RosClient, topic: str = "/llm/task_intent") -> list[dict]:
 
 
 def utterances(client: RosClient, topic: str = "/bt/events") -> list[dict]:
-    """Utterance events. Their log line's ``kind`` is the utterance's kind (ignore, tasks, stop...):
-    Event.to_dict lets data keys override the event's own; ``parsed`` marks them."""
-    return [e for e in (json.loads(m["data"]) for m in client.on(topic)) if "parsed" in e]
+    """Utterance events; what each was heard as (ignore, tasks, stop, ...) is their ``data_kind``."""
+    return events_of(client, "utterance", topic)
 
 
 def events_of(client: RosClient, kind: str, topic: str = "/bt/events") -> list[dict]:
@@ -85,7 +84,7 @@ def test_the_wake_filter_applies_on_audio_msg_only_and_the_namespace_prefixes_ev
     assert "/lab_robot/audio_msg" in line and "/lab_robot/pick_target" in line
     assert f" domain {session_domain_id()} " in line  # ROS_DOMAIN_ID from the environment
     assert [i["action"] for i in intents(client, "/lab_robot/llm/task_intent")] == ["turn_around", "gesture", "stop"]
-    assert [(u["text"], u["kind"]) for u in heard] == [
+    assert [(u["text"], u["data_kind"]) for u in heard] == [  # the utterance's own kind: flat JSON's data_kind
         ("go to the kitchen", "ignore"), ("turn around", "tasks"), ("wave", "tasks"), ("Hey Stuart, stop", "stop")]
 
 
