@@ -105,7 +105,7 @@ def chat_process():
 def test_command_conversation_stop_and_quit(chat_process):
     chat = chat_process("--speed", "4")
     pids = chat.daemon_pids()
-    assert len(pids) == 4
+    assert len(pids) == 5  # loco, tts, gesture, pick, vision
 
     chat.say("Hey Stuart, go to the bathroom")
     chat.expect(r"heard\s+'Hey Stuart, go to the bathroom' -> tasks: navigate_to_marker\(target=bathroom\)")

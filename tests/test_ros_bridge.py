@@ -19,6 +19,8 @@ pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed
 
 from ros_harness import BridgeProcess, Lines, RosClient, alive, ros_env, session_domain_id  # noqa: E402
 
+from stuart_bt.catalogue import FAMILIES  # noqa: E402
+
 KITCHEN = (3.5, 1.5)  # sim/maps/lab_markers.json
 ARRIVAL = 0.5  # m: the original system's arrival tolerance
 
@@ -130,7 +132,8 @@ def test_a_signal_during_a_mission_stops_the_tree_and_the_daemons_and_leaves_no_
             halted = client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"kind":"halt"' in m["data"], 10)
 
     assert code == 0
-    assert len(daemons) >= 4 and set(daemons.values()) <= {pid for pid, _ in children}  # one per skill family
+    assert set(daemons) == set(FAMILIES)  # one daemon per skill family
+    assert set(daemons.values()) <= {pid for pid, _ in children}
     assert not [c for c in children if alive(c)]
     assert halted is not None  # the tree was halted, and the node still said so
     assert bridge.out.lines[-1] == "ros bridge: stopped; every daemon stopped"

@@ -1,4 +1,4 @@
-"""The supervisor: four dry daemons up, crashes and hangs noticed, restarts, clean shutdown."""
+"""The supervisor: every family's dry daemon up, crashes and hangs noticed, restarts, clean shutdown."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.catalogue import FAMILIES
 from stuart_bt.clock import ScaledClock
 from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
 from stuart_bt.events import EventRecorder, EventStream
@@ -98,11 +99,11 @@ def states(recorder: EventRecorder, family: str) -> list[str]:
     return [e.data["state"] for e in recorder.of_kind("daemon_state") if e.data["family"] == family]
 
 
-def test_start_brings_up_the_four_dry_daemons(make, recorder):
+def test_start_brings_up_a_dry_daemon_per_family(make, recorder):
     before = children_of(os.getpid())
     sup = make()
     sup.start()
-    assert {f: sup.phase(f) for f in sup.families} == {f: "ready" for f in ("loco", "tts", "gesture", "pick")}
+    assert {f: sup.phase(f) for f in sup.families} == {f: "ready" for f in FAMILIES}
     assert sorted(our_new_children(before)) == sorted(sup.pid(f) for f in sup.families)
     for family in sup.families:
         assert states(recorder, family) == ["starting", "ready"]
@@ -188,7 +189,7 @@ def test_a_daemon_that_never_sends_ready_fails_the_start_with_its_stderr(make):
 def test_an_unknown_backend_fails_the_start_naming_the_valid_ones(make):
     sup = make(backend="unitre", families=("pick",))
     with pytest.raises(DaemonStartError, match=r"^pick daemon failed to start: exited with code 2 before READY "
-                                               r"\(stderr: .*unknown backend 'unitre'; valid backends: (\w+, )*dry(, \w+)*\)$"):
+                                               r"\(stderr: .*unknown backend 'unitre' \(did you mean 'unitree'\?\); valid backends: (\w+, )*dry(, \w+)*\)$"):
         sup.start()
 
 
@@ -199,7 +200,7 @@ def test_stop_all_stops_a_running_walk_where_it_is(make):
     walk = loco.request("navigate", {"pose": {"x": 10.0, "y": 0.0, "yaw": None}})
     poll_at_20hz(sup, lambda: walk.progress is not None)
     stops = sup.stop_all()
-    assert sorted(s.family for s in stops) == ["gesture", "loco", "pick", "tts"]
+    assert sorted(s.family for s in stops) == sorted(FAMILIES)
     for stop in stops:
         assert sup.wait(stop, timeout=2.0).ok
     assert walk.error_code == "stopped"
