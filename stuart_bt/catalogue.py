@@ -184,6 +184,13 @@ LEAVES: dict[str, LeafSpec] = {
             default_timeout=60.0,
         ),
         LeafSpec(
+            "observe",
+            "Look once with the head camera; everything in view goes to the world state.",
+            (),
+            family="vision",
+            default_timeout=10.0,
+        ),
+        LeafSpec(
             "wait",
             "Do nothing for some seconds (clock time).",
             (Param("seconds", "seconds", "How long.", required=True),),

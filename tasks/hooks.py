@@ -42,10 +42,10 @@ def object_at_marker(state: Any, obj: str) -> bool:
 
 # -- functions ----------------------------------------------------------------------------------------
 @HOOKS.function
-def standoff_pose(state: Any, obj: str) -> dict[str, float] | None:
+def standoff_pose(state: Any, obj: str, side: float | None = None) -> dict[str, float] | None:
     """Where the robot is predicted to stand to reach the object: heading along the line from the
     robot (or, when its pose is unknown, the nearest marker) to the object, with the object
-    ``standoff`` ahead and ``reach_side`` to the left. The loco daemon may choose another side of
+    ``standoff`` ahead and ``side`` (default ``reach_side``) to the left. The loco daemon may choose another side of
     the object when furniture is in the way; the prediction only feeds later steps' geometry."""
     spot = _object_xy(state, obj)
     if spot is None:
@@ -54,7 +54,8 @@ def standoff_pose(state: Any, obj: str) -> dict[str, float] | None:
     origin = state["pose"] if isinstance(state["pose"], dict) else _nearest_marker(state, ox, oy)
     dx, dy = (ox - origin["x"], oy - origin["y"]) if origin else (1.0, 0.0)
     heading = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-6 else 0.0
-    ahead, side = float(state["standoff"]), float(state["reach_side"])
+    ahead = float(state["standoff"])
+    side = float(state["reach_side"] if side is None else side)
     cos, sin = math.cos(heading), math.sin(heading)
     return {"x": ox - ahead * cos + side * sin, "y": oy - ahead * sin - side * cos, "yaw": heading}
 

@@ -61,7 +61,9 @@ def test_quick_run_writes_every_figure(tmp_path: Path) -> None:
     results = {r["name"]: r for r in report["results"]}
     assert sorted(results) == sorted(EXPECTED)
     for name, r in results.items():
-        assert _number(r["value"]) and r["value"] > 0, name
+        assert _number(r["value"]), name
+        # a measured quantity is positive; a difference in percent (an overhead) may fall below 0 in the noise
+        assert r["value"] > 0 or (r["unit"] == "%" and r["value"] > -100), name
         assert r["unit"], name
         assert r["met"] in (True, False, None), name
         if r["anchor"] is None:

@@ -35,7 +35,7 @@ def test_fetch_compiles_to_one_sequence_per_compound_and_one_leaf_per_step(plan_
          "speak mission/fetch/acknowledge",
          ["sequence mission/fetch/get",
           ["sequence mission/fetch/get/go_near", "approach mission/fetch/get/go_near/approach"],
-          "pick mission/fetch/get/pick_object"],
+          "find mission/fetch/get/look", "pick mission/fetch/get/pick_object"],
          "navigate mission/fetch/go_to",
          "release mission/fetch/put_down"]]
     assert all(n.params.get("memory") is True for n in compiled.spec.walk() if n.kind == "sequence")
@@ -102,7 +102,7 @@ def test_the_builder_builds_the_compiled_tree_and_skip_if_skips_a_step_whose_eff
 
     assert root.status == Status.SUCCESS
     assert started == ["mission/find/acknowledge", "mission/find/search/scan/glance/optional/find",
-                       "mission/find/search/scan/scan/scan/scan/look", "mission/find/approach"], \
+                       "mission/find/search/scan/scan/scan/scan/look", "mission/find/face"], \
         "after the first glance saw it, the other turns and glances were skipped"
 
 

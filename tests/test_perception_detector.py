@@ -93,8 +93,8 @@ def test_two_blobs_of_one_label_are_two_detections():
     labels = np.full((60, 80), -1, dtype=np.int16)
     labels[10:30, 5:25] = 0
     labels[10:30, 50:70] = 0
-    frame = Frame(np.zeros((60, 80, 3), np.uint8), np.ones((60, 80), np.float32), Intrinsics(50, 50, 39.5, 29.5, 80, 60),
-                  labels=labels, label_names=("bottle",))
+    frame = Frame(np.zeros((60, 80, 3), np.uint8), np.ones((60, 80), np.float32),
+                  Intrinsics(50, 50, 39.5, 29.5, 80, 60), labels=labels, label_names=("bottle",))
     boxes = sorted(d.box for d in SimDetector().detect(frame))
     assert boxes == [(5, 10, 25, 30), (50, 10, 70, 30)]
 

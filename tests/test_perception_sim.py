@@ -2,6 +2,8 @@
 camera, detects, projects and remembers; the position lands in the world state, a ``memory``
 event carries the summary, and pick aims at the remembered position.
 
+"What do you see" asked while idle gets one fresh look before the answer.
+
 Lab (docs/sim.md): at 'kitchen' (3.5, 1.5, facing +x) the bottle stands 0.51 m ahead on the
 table, the apple further left; the cup is on the workbench, out of sight from there.
 """
@@ -63,3 +65,38 @@ def test_pick_aims_at_the_position_the_camera_found(stuart_sim):
     assert gap(pick["args"]["position"], result.initial_world["objects"]["bottle"]) < 0.025
     result.assert_object_raised("bottle", by=0.05)
     result.assert_holding("bottle")
+
+
+class Listener:
+    """A conversation backend that writes down what it is told and answers from it."""
+
+    def __init__(self) -> None:
+        self.contexts: list[dict] = []
+
+    def reply(self, text, context):
+        from stuart_bt.conversation import build_messages
+        from stuart_bt.mission.commands import Reply
+
+        self.contexts.append(context)
+        prompt = build_messages(text, context)[-1]["content"]
+        return Reply(prompt.split("\n", 1)[0].strip("()"))
+
+
+def test_what_do_you_see_looks_first_and_answers_with_what_is_in_view():
+    from stuart_bt.mission.executor import MissionExecutor, MissionOptions
+
+    listener = Listener()
+    with MissionExecutor(MissionOptions(backend="sim", start="kitchen"), conversation=listener) as mx:
+        commands = []
+        mx.events.subscribe(lambda e: commands.append(e.data) if e.kind == "command" else None)
+        mx.submit("Hey Stuart, what do you see?")
+        assert mx.wait_idle(60)
+    looks = [c["cmd"] for c in commands if c["family"] == "vision" and c["cmd"] not in ("stop", "shutdown")]
+    assert looks == ["look"]
+    [context] = listener.contexts
+    seen = {d["label"]: d for d in context["detections"]}
+    assert set(seen) == {"bottle", "apple"} and seen["bottle"]["where"] == "near the kitchen"
+    assert seen["bottle"]["distance"] == pytest.approx(0.51, abs=0.03)
+    said = [c["args"]["text"] for c in commands if c["family"] == "tts" and c["cmd"] == "say"]
+    seen_line = "You currently see: bottle (0.5 m away, near the kitchen), apple (0.9 m away, near the kitchen)."
+    assert said and said[-1].endswith(seen_line)

@@ -181,10 +181,11 @@ def test_stop_halts_the_walk_at_once_and_continue_walks_on_to_the_bathroom():
 
 def test_an_apple_moved_while_the_robot_walks_to_it_is_looked_for_again_approached_and_picked():
     """The fault is real: the apple is moved along the table (set_object) while the robot walks to
-    it. The pick fails ``unreachable``, the executor forgets the apple, re-plans ``pick_up`` (the
-    find sees it at its new place), the robot approaches again from where it stands at the table
-    and picks it up. The test first stands the apple at the table's near edge, in the world and in
-    memory alike: at its default place in the middle of the table no arm reaches it (the next test)."""
+    it. Standing before where it was, the robot's close look (the head camera) does not see it, the
+    executor forgets the apple and re-plans ``pick_up``: it looks around until it sees the apple at
+    its new place, walks along the table to it, looks again and picks it up. The test first stands
+    the apple at the table's near edge, in the world and in memory alike: at its default place in
+    the middle of the table no arm reaches it (the next test)."""
     first, moved_to = (4.05, 1.75, 0.79), (4.05, 1.2)
     with robot() as (mx, trace):
         mx.session.world.call("set_object", label="apple", x=first[0], y=first[1], z=first[2])
@@ -199,26 +200,28 @@ def test_an_apple_moved_while_the_robot_walks_to_it_is_looked_for_again_approach
 
     leaves = [(e.path, e.data["outcome"], e.data["reason"] or "") for e in trace.events
               if e.kind == "leaf" and e.data["skill"] in ("approach", "pick", "find")]
-    picks = [i for i, e in enumerate(trace.events) if e.kind == "command" and e.data.get("cmd") == "pick"]
-    assert picks and picks[0] > moved_at, "the apple was moved after the robot had arrived"
+    looks = [i for i, e in enumerate(trace.events) if e.kind == "command" and e.data.get("cmd") == "find"]
+    assert looks and looks[0] > moved_at, "the apple was moved after the robot had arrived"
     assert [leaf[:2] for leaf in leaves] == [
         ("mission/pick_up/get/go_near/approach", "SUCCESS"),  # walked to where the apple was
-        ("mission/pick_up/get/pick_object", "FAILURE"),  # it is not there any more: out of reach
-        # repair: looked for again with the head camera; the apple is now outside the camera's
-        # view, so the glances see nothing and the scan turns until the last look sees it
+        ("mission/pick_up/get/look", "FAILURE"),  # the close look: it is not there any more
+        # repair: looked for again with the head camera; the apple is outside the camera's view
+        # from here, so the glances see nothing and the scan turns until the last look sees it
         ("mission/pick_up/search/scan/glance/optional/find", "FAILURE"),
         ("mission/pick_up/search/scan/scan/glance/optional/find", "FAILURE"),
         ("mission/pick_up/search/scan/scan/scan/glance/optional/find", "FAILURE"),
         ("mission/pick_up/search/scan/scan/scan/scan/look", "SUCCESS"),
         ("mission/pick_up/get/go_near/approach", "SUCCESS"),  # walked along the table to it
+        ("mission/pick_up/get/look", "SUCCESS"),
         ("mission/pick_up/get/pick_object", "SUCCESS"),
     ], "\n".join(map(str, leaves))
-    assert leaves[1][2].startswith("unreachable: apple "), leaves[1]
-    assert all(leaf[2].startswith("not_found: no apple in view") for leaf in leaves[2:5]), leaves[2:5]
+    assert all(leaf[2].startswith("not_found: no apple in view") for leaf in leaves[1:5]), leaves[1:5]
+    assert not [e for e in trace.events if e.kind == "command" and e.data.get("cmd") == "pick"
+                and e.data["args"].get("position", {}).get("y", 0) > 1.5], "a pick aimed where the apple was"
 
     mission = mx.missions[0]
     assert mission.status == "succeeded" and mission.repairs == 1
-    assert [r["failed"] for r in trace.missions("repaired")] == ["mission/pick_up/get/pick_object"]
+    assert [r["failed"] for r in trace.missions("repaired")] == ["mission/pick_up/get/look"]
     assert trace.said() == ["Picking up the apple"]
     assert "apple" in final["held"].values(), final["held"]  # the world's hand holds it
     apple = final["objects"]["apple"]
@@ -242,6 +245,12 @@ def test_an_object_no_arm_can_reach_from_any_side_is_said_and_nothing_moves():
     assert not trace.commands("pick", "pick"), "an arm moved"
 
 
+def body_frame(base: dict[str, float], x: float, y: float) -> tuple[float, float]:
+    """(ahead, left) of the map point (x, y) as the robot at ``base`` sees it (REP-103)."""
+    dx, dy, yaw = x - base["x"], y - base["y"], base["yaw"]
+    return dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw)
+
+
 def test_go_to_an_object_ends_facing_it_within_arm_reach():
     with robot() as (mx, trace):
         mx.submit("Hey Stuart, go to the cup")
@@ -250,11 +259,42 @@ def test_go_to_an_object_ends_facing_it_within_arm_reach():
 
     assert mx.missions[0].status == "succeeded", mx.missions[0].reason
     assert trace.said() == ["Going to the cup"]
-    base, cup = final["base"], final["objects"]["cup"]
-    dx, dy, yaw = cup["x"] - base["x"], cup["y"] - base["y"], base["yaw"]
-    ahead, left = dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw)
-    assert 0.2 < ahead < 0.45 and abs(left) < 0.15, f"the cup is at ({ahead:.2f}, {left:.2f}) in the body frame"
+    ahead, left = body_frame(final["base"], final["objects"]["cup"]["x"], final["objects"]["cup"]["y"])
+    assert 0.2 < ahead < 0.45 and abs(left) < 0.05, f"the cup is at ({ahead:.2f}, {left:.2f}) in the body frame"
     assert not final["collided"]
+
+
+def test_find_the_cup_ends_facing_it_with_the_camera_s_position_in_memory():
+    with robot() as (mx, trace):
+        mx.submit("Hey Stuart, find the cup")
+        assert mx.wait_idle(WALL_LIMIT)
+        final = state(mx)
+
+    assert mx.missions[0].status == "succeeded", mx.missions[0].reason
+    cup = final["objects"]["cup"]
+    ahead, left = body_frame(final["base"], cup["x"], cup["y"])
+    assert 0.2 < ahead < 0.45 and abs(math.atan2(left, ahead)) < math.radians(8), (ahead, left)  # facing it
+    looks = [e for e in trace.events if e.kind == "leaf" and e.data["skill"] == "find"]
+    assert looks and looks[-1].data["outcome"] == "SUCCESS"
+    remembered = mx.world.objects["cup"]
+    assert remembered.source == "vision" and math.hypot(remembered.x - cup["x"], remembered.y - cup["y"]) < 0.025
+
+
+def test_pick_up_the_bottle_from_the_entrance_walks_up_looks_and_picks_where_the_camera_saw_it():
+    with robot() as (mx, trace):
+        initial = state(mx)
+        mx.submit("Hey Stuart, pick up the bottle")
+        assert mx.wait_idle(WALL_LIMIT)
+        final = state(mx)
+
+    assert distance(initial["base"], 0.0, 0.0) < 0.05, "the robot did not start at the entrance"
+    assert mx.missions[0].status == "succeeded", mx.missions[0].reason
+    order = [e.data["skill"] for e in trace.events if e.kind == "leaf" and e.data["skill"] in ("approach", "find", "pick")]
+    assert order == ["approach", "find", "pick"]
+    pick = next(e for e in trace.events if e.kind == "command" and e.data.get("cmd") == "pick")
+    aimed, truth = pick.data["args"]["position"], initial["objects"]["bottle"]
+    assert math.dist([aimed[k] for k in "xyz"], [truth[k] for k in "xyz"]) < 0.025, (aimed, truth)
+    assert "bottle" in final["held"].values() and final["objects"]["bottle"]["z"] > 0.855 + 0.05
 
 
 def test_an_unknown_place_is_said_and_the_base_does_not_move():

@@ -80,10 +80,11 @@ def test_a_robot_away_from_its_last_marker_is_at_no_marker() -> None:
     ("move_relative", ["speak text=I am staying where I am"]),
     ("turn_by_angle(1.5708)", ["speak text=Turning", "turn angle=1.57"]),
     ("turn_around", ["speak text=Turning around", "turn angle=3.14"]),
-    ("pick_up(bottle)", ["speak text=Picking up the bottle", "approach object=bottle standoff=0.29 lateral=-0.10", "pick object=bottle"]),
+    ("pick_up(bottle)", ["speak text=Picking up the bottle", "approach object=bottle standoff=0.29 lateral=-0.10",
+                         "find object=bottle", "pick object=bottle"]),  # the camera has the last word up close
     ("gesture('high wave')", ["speak text=Doing a high wave", "gesture play=high wave"]),
     ("stop", ["speak text=Stopping", "stop"]),
-    ("find(cup)", ["speak text=Looking for the cup", "approach object=cup standoff=0.29 lateral=-0.10"]),
+    ("find(cup)", ["speak text=Looking for the cup", "approach object=cup standoff=0.29 lateral=0", "find object=cup"]),
 ])
 def test_each_intent_starts_with_its_acknowledgement(task: str, expected: list[str]) -> None:
     p = plan(task)
@@ -117,7 +118,7 @@ def test_fetch_a_known_object_goes_to_it_picks_it_and_puts_it_down_at_the_place(
     p = plan("fetch(bottle, workbench)")
     assert p.tasks[0].method == "known_location"
     assert steps(p) == ["speak text=Fetching the bottle for the workbench", "approach object=bottle standoff=0.29 lateral=-0.10",
-                        "pick object=bottle", "navigate marker=workbench", "release"]
+                        "find object=bottle", "pick object=bottle", "navigate marker=workbench", "release"]
     assert p.state["held"] is None and p.state["at"] == "workbench"
     assert p.state["objects"]["bottle"] == {"x": 1.0, "y": -2.8, "z": 0.8}  # 0.4 m ahead of the robot
 
@@ -141,6 +142,7 @@ def test_fetch_an_object_remembered_at_a_marker_walks_there_and_looks_for_it() -
         "navigate marker=kitchen",
         "find object=keys",                                                      # its position is known from now on
         "approach object=keys standoff=0.29 lateral=-0.10",                     # the leaf reads the position when it starts
+        "find object=keys",                                                      # and looks again up close
         "pick object=keys",
         "navigate marker=workbench",
         "release",
@@ -156,22 +158,23 @@ def test_fetch_an_unknown_object_looks_around_in_steps_first() -> None:
         ("glance", True, "'orange' in world.objects"), ("scan_turn", False, "'orange' in world.objects"),
         ("glance", True, "'orange' in world.objects"), ("scan_turn", False, "'orange' in world.objects"),
         ("look", False, None),                                                   # the last look must see it
+        ("look", False, None),                                                   # and again up close, before the pick
     ]
     assert steps(p)[-3:] == ["pick object=orange", "navigate marker=kitchen", "release"]
 
 
 def test_bring_returns_to_where_the_command_was_given() -> None:
     p = plan("bring(cup)")
-    assert steps(p) == ["speak text=Bringing you the cup", "approach object=cup standoff=0.29 lateral=-0.10", "pick object=cup",
-                        "navigate marker=entrance", "release", "speak text=Here is your cup."]
+    assert steps(p) == ["speak text=Bringing you the cup", "approach object=cup standoff=0.29 lateral=-0.10", "find object=cup",
+                        "pick object=cup", "navigate marker=entrance", "release", "speak text=Here is your cup."]
     spot = {"x": 2.0, "y": 1.0, "yaw": 0.5}
-    assert steps(plan("bring(cup)", lab(speaker_at=spot)))[3] == "navigate x=2.00 y=1.00 yaw=0.50"
+    assert steps(plan("bring(cup)", lab(speaker_at=spot)))[4] == "navigate x=2.00 y=1.00 yaw=0.50"
 
 
 def test_going_to_an_object_walks_up_to_it_looking_for_it_first_when_unknown() -> None:
     known = plan("navigate_to_marker(bottle)")
     assert known.tasks[0].method == "to_object"
-    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=-0.10"]
+    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=0"]  # squarely
     unknown = plan("navigate_to_marker(orange)")
     assert [s.skill for s in unknown.primitives()][:2] == ["speak", "find"] and unknown.primitives()[-1].skill == "approach"
     assert plan("navigate_to_marker(kitchen)").tasks[0].method == "walk"  # a marker is walked to, not approached

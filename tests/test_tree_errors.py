@@ -77,7 +77,7 @@ def test_node_with_no_kind_key():
     assert one_error("root:\n  sequence:\n    - {}\n") == (
         "t.yaml:3:7: t: empty node: expected one kind key (sequence, selector, parallel, retry, repeat, timeout, "
         "inverter, force_success, force_failure, oneshot, guard, delay, navigate, approach, turn, pick, release, gesture, "
-        "speak, find, wait, stop, condition, set, log, include)")
+        "speak, find, observe, wait, stop, condition, set, log, include)")
 
 
 def test_name_outside_the_kind_mapping():

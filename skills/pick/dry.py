@@ -115,7 +115,7 @@ class DryPick(PickBackend):
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        position = self._known(label)
+        position = self._aim(label, position)
         distance = position.distance_from(robot_pose)
         if distance > REACH:
             raise DaemonError("unreachable", f"{label} is {distance:.1f} m away; reach is {REACH} m",
@@ -149,6 +149,13 @@ class DryPick(PickBackend):
     def state(self) -> dict[str, Any]:
         return {"held": self.held, "arm": self.held_arm,
                 "objects": {label: p.to_dict() for label, p in self.objects.items()}}
+
+    def _aim(self, label: str, seen: dict[str, float] | None) -> Position:
+        """Where to grasp: where perception saw the object (it then stands there in the table),
+        else where the table has it."""
+        if seen is not None:
+            self.objects[label] = Position(seen["x"], seen["y"], seen["z"])
+        return self._known(label)
 
     def _known(self, label: str) -> Position:
         if label not in self.objects:

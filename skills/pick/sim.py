@@ -24,7 +24,7 @@ import numpy as np
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress, TimedActivity
+from stuart_bt.daemon.backend import Activity, DaemonError, Delivered, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.sim.world.client import WorldClient, WorldError
 from stuart_bt.world import Pose
@@ -195,7 +195,7 @@ class SimPick(PickBackend):
         if self.active is None or not self.active.awaiting_confirm:
             raise DaemonError("not_found", "no pick is waiting for confirmation")
         self.active.confirm()
-        return _Instant({"confirmed": True})
+        return Delivered(0.0, {"confirmed": True})
 
     # -- release ---------------------------------------------------------------------------
     def release(self, arm: str, robot_pose: Pose) -> Activity:
@@ -253,25 +253,3 @@ def _object(state: dict[str, Any], label: str) -> dict[str, float]:
 
         raise DaemonError("not_found", f"no object {label!r} in the world{did_you_mean(label, objects)}")
     return objects[label]
-
-
-class _Timed(TimedActivity):
-    resource = None
-
-    def __init__(self, seconds: float, result: dict[str, Any]) -> None:
-        super().__init__(seconds)
-        self._result = result
-
-    def report(self, now: float) -> dict[str, Any]:
-        return {"fraction": round(self.fraction(now), 3)}
-
-    def finish(self, now: float) -> dict[str, Any]:
-        return self._result
-
-    def cancel(self, now: float) -> dict[str, Any]:
-        return {}
-
-
-class _Instant(_Timed):
-    def __init__(self, result: dict[str, Any]) -> None:
-        super().__init__(0.0, result)

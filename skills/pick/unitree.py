@@ -8,9 +8,8 @@ planned motion with the ``confirm`` command), the arm is blended in and moves: a
 descend, close the hand, lift, and holds. A release lowers back to the grasp height, opens the
 hand, retracts to the neutral pose and blends the arm back to the walking controller.
 
-An object's position comes with the pick request when perception found it (the vision daemon's
-memory), else from the ``objects`` option or skills/objects.json; the robot's pose comes with
-every request.
+Objects come from the request's ``position`` (where perception saw them), else the ``objects``
+option or skills/objects.json; the robot's pose comes with every request.
 
 Options (besides the link settings in :mod:`stuart_bt.skills.vendor`): ``objects``, ``solver``
 (pin | placo, default pin), ``confirm`` (default true), ``ramp`` (0.5 s blend ramp),
@@ -114,11 +113,9 @@ class UnitreePick(DryPick):
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        if position is not None:  # where perception saw it: on the robot, the only truth there is
-            self.objects[label] = Position(position["x"], position["y"], position["z"])
-        spot = self._known(label)
-        target = world_to_torso(np.array([spot.x, spot.y, spot.z + self.grasp_dz]), robot_pose)
-        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, spot) >= 0 else "right")
+        position = self._aim(label, position)
+        target = world_to_torso(np.array([position.x, position.y, position.z + self.grasp_dz]), robot_pose)
+        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, position) >= 0 else "right")
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         solutions = self._solve(label, side, points, target)
         open_hand, closed = hand(side, "open"), hand(side, "grip")

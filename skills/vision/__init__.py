@@ -8,4 +8,5 @@ tree's tick; results reach the framework as daemon results (``find``, ``look``, 
 BACKENDS: dict[str, str] = {
     "dry": "stuart_bt.skills.vision.dry:DryVision",
     "sim": "stuart_bt.skills.vision.sim:SimVision",
+    "unitree": "stuart_bt.skills.vision.unitree:UnitreeVision",
 }

@@ -12,7 +12,7 @@ from abc import abstractmethod
 from typing import Any
 
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import Activity, Backend, Handler
+from stuart_bt.daemon.backend import Activity, Backend, Delivered, Handler
 from stuart_bt.world import Pose
 
 
@@ -49,7 +49,5 @@ class VisionBackend(Backend):
         return self.look()
 
     def _memory_command(self, args: dict[str, Any]) -> Activity:
-        from .activities import Instant
-
         a.only_known(args, (), "memory")
-        return Instant(0.0, {"memory": self.memory()})
+        return Delivered(0.0, {"memory": self.memory()})

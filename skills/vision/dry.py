@@ -1,6 +1,7 @@
 """Dry vision: no camera; the lab's object table (skills/objects.json) stands for what is seen.
 
-Options: ``objects`` (``{label: {x, y, z}}``, replacing the file). It keeps the contract of the real thing (an unknown label is ``not_found``, the held object is
+Options: ``objects`` (``{label: {x, y, z}}``, replacing the file). It keeps the contract of
+the real thing (an unknown label is ``not_found``, the held object is
 found in the hand, results carry a memory summary in the same format) so dry runs of trees and
 missions take the same branches they would on the robot.
 """
@@ -12,13 +13,12 @@ from typing import Any
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import Activity, DaemonError
+from stuart_bt.daemon.backend import Activity, DaemonError, Delivered
 from stuart_bt.perception.memory import Observation, SpatialMemory
 from stuart_bt.suggest import did_you_mean
 from stuart_bt.world import Pose
 
 from ..pick.dry import Position, load_objects, parse_objects
-from .activities import Instant
 from .backend import VisionBackend
 
 FIND_SECONDS = 1.5
@@ -38,7 +38,7 @@ class DryVision(VisionBackend):
     def find(self, label: str, robot_pose: Pose, held: str | None) -> Activity:
         if label == held:
             spot = {"x": round(robot_pose.x, 4), "y": round(robot_pose.y, 4), "z": HAND_HEIGHT}
-            return Instant(0.0, {"object": label, "position": spot, "distance": 0.0, "in_hand": True,
+            return Delivered(0.0, {"object": label, "position": spot, "distance": 0.0, "in_hand": True,
                                  "detections": [], "memory": self.memory()})
         if label not in self.objects:
             known = ", ".join(sorted(self.objects)) or "none"
@@ -46,11 +46,11 @@ class DryVision(VisionBackend):
         p = self.objects[label]
         self.spatial.update([Observation(label, p.x, p.y, p.z, 1.0)])
         distance = math.hypot(p.x - robot_pose.x, p.y - robot_pose.y)
-        return Instant(FIND_SECONDS, {"object": label, "position": p.to_dict(), "distance": round(distance, 3),
+        return Delivered(FIND_SECONDS, {"object": label, "position": p.to_dict(), "distance": round(distance, 3),
                                       "detections": [{"label": label, "confidence": 1.0}], "memory": self.memory()})
 
     def look(self) -> Activity:
-        return Instant(0.0, {"detections": [], "memory": self.memory()})
+        return Delivered(0.0, {"detections": [], "memory": self.memory()})
 
     def memory(self) -> dict[str, Any]:
         return self.spatial.summary()

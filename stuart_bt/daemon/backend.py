@@ -123,6 +123,26 @@ class TimedActivity(Activity):
     def finish(self, now: float) -> dict[str, Any]: ...
 
 
+class Delivered(TimedActivity):
+    """A result known when the command arrives, delivered after ``seconds`` of clock time (0: at
+    the first poll): a dry search, a confirmation, a memory read-out."""
+
+    resource: ClassVar[str | None] = None
+
+    def __init__(self, seconds: float, result: dict[str, Any]) -> None:
+        super().__init__(seconds)
+        self._result = result
+
+    def report(self, now: float) -> dict[str, Any]:
+        return {"fraction": round(self.fraction(now), 3)}
+
+    def finish(self, now: float) -> dict[str, Any]:
+        return self._result
+
+    def cancel(self, now: float) -> dict[str, Any]:
+        return {}
+
+
 Handler = Callable[[dict[str, Any]], Activity]
 
 

@@ -9,12 +9,14 @@ from ..tree.spec import NodeSpec
 from .base import Leaf, LeafFailure, RunContext, SkillLeaf
 from .builtin import Condition, Log, Set, Stop, Wait
 from .expression import Gesture, Speak
-from .manipulation import Find, Pick, Release
+from .manipulation import Pick, Release
 from .motion import Approach, Navigate, Turn
+from .vision import Find, Observe
 
 LEAF_CLASSES: dict[str, type[Leaf]] = {
     cls.kind: cls
-    for cls in (Navigate, Approach, Turn, Pick, Release, Find, Speak, Gesture, Wait, Stop, Condition, Set, Log)
+    for cls in (Navigate, Approach, Turn, Pick, Release, Find, Observe, Speak, Gesture, Wait, Stop, Condition, Set,
+                Log)
 }
 
 

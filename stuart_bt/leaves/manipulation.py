@@ -1,4 +1,4 @@
-"""Leaves that handle objects: ``pick`` and ``release`` (pick daemon), ``find`` (vision daemon)."""
+"""Leaves that handle objects: ``pick`` and ``release`` (pick daemon)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ..world import KnownObject
 from .base import LeafFailure, SkillLeaf
 
 
-class _ObjectLeaf(SkillLeaf):
+class ObjectLeaf(SkillLeaf):
     def robot_pose(self) -> dict[str, float]:
         return self.ctx.blackboard.world.pose.to_dict()
 
@@ -21,7 +21,7 @@ class _ObjectLeaf(SkillLeaf):
             )
 
 
-class Pick(_ObjectLeaf):
+class Pick(ObjectLeaf):
     """Pick up an object by label; the daemon checks reach before any motion."""
 
     kind = "pick"
@@ -44,7 +44,7 @@ class Pick(_ObjectLeaf):
         world.objects.pop(world.held, None)
 
 
-class Release(_ObjectLeaf):
+class Release(ObjectLeaf):
     """Put down what is held; the object is known again where it was put."""
 
     kind = "release"
@@ -59,23 +59,3 @@ class Release(_ObjectLeaf):
             self.remember(label, result.get("position"))
         world.held = None
         world.held_arm = None
-
-
-class Find(_ObjectLeaf):
-    """Look for an object (vision daemon); its position goes to the world state's known objects
-    and the spatial memory's summary goes out as a ``memory`` event."""
-
-    kind = "find"
-
-    def command(self) -> tuple[str, dict[str, Any]]:
-        return "find", {"object": str(self.param("object")), "robot_pose": self.robot_pose(),
-                        "held": self.ctx.blackboard.world.held}
-
-    def on_done(self, result: dict[str, Any]) -> None:
-        label = result.get("object", str(self.param("object")))
-        if result.get("in_hand"):
-            return  # held: the world state already says so
-        self.remember(label, result.get("position"), float(result.get("confidence", 1.0)), source="vision")
-        memory = result.get("memory")
-        if isinstance(memory, dict):
-            self.ctx.events.publish("memory", self.spec_path, **memory)

@@ -98,6 +98,13 @@ class _Say:
     why: str
 
 
+@dataclass
+class _Look:
+    """One look with the head camera before answering ``question`` (what do you see?)."""
+
+    question: str
+
+
 class MissionExecutor:
     """Utterances in, missions out. Use as a context manager (daemons always shut down)."""
 
@@ -121,8 +128,8 @@ class MissionExecutor:
             seed=self.options.seed))
         self.missions: list[Mission] = []
         self.halted: Mission | None = None
-        self._queue: deque[Mission | _Say] = deque()
-        self._current: Mission | _Say | None = None
+        self._queue: deque[Mission | _Say | _Look] = deque()
+        self._current: Mission | _Say | _Look | None = None
         self._executor: Executor | None = None
         self._cond = threading.Condition()
         self._closing = False
@@ -270,12 +277,28 @@ class MissionExecutor:
             self._cond.notify_all()
 
     def _converse(self, text: str) -> None:
-        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+        """Answer in the conversation thread; a question about what the robot sees, asked while
+        it is idle, first gets one fresh look (an ``observe`` tree) so the answer is current."""
+        from ..conversation.prompt import is_vision_question
 
-        context = {"held": self.world.held, "at": self.world.last_marker, "busy": self._current is not None,
-                   "detections": seen_objects(self.world, self.session.clock.now())}
         with self._cond:
             self._pending_replies += 1
+            look_first = (is_vision_question(text) and self._current is None and not self._queue
+                          and self.session.supervisor is not None and "vision" in self.session.supervisor.families)
+            if look_first:
+                self._queue.appendleft(_Look(text))
+                self._cond.notify_all()
+        if not look_first:
+            self._answer(text)
+
+    def _answer(self, text: str) -> None:
+        """Reply from the world state as it is now (the reply thread; ``_pending_replies`` was
+        counted by :meth:`_converse`)."""
+        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+
+        busy = self._current is not None and not isinstance(self._current, _Look)
+        context = {"held": self.world.held, "at": self.world.last_marker, "busy": busy,
+                   "detections": seen_objects(self.world, self.session.clock.now())}
 
         def answer() -> None:
             try:
@@ -339,6 +362,8 @@ class MissionExecutor:
             try:
                 if isinstance(job, _Say):
                     self._say(job.text)
+                elif isinstance(job, _Look):
+                    self._look_then_answer(job.question)
                 else:
                     self._run_mission(job)
             except Exception as e:  # noqa: BLE001 - a bug in one mission must not deafen the robot
@@ -352,6 +377,13 @@ class MissionExecutor:
                     while self._asides:  # the mission ended before a reply found a pause: say it now
                         self._queue.appendleft(_Say(self._asides.pop(), "reply"))
                     self._cond.notify_all()
+
+    def _look_then_answer(self, question: str) -> None:
+        try:
+            spec = TreeSpec(NodeSpec("observe", "look", "look", _where(), {}), "<look>")
+            self._run_tree(spec, None)  # a failed look leaves the memory as it was: still answer
+        finally:
+            self._answer(question)
 
     def _say(self, text: str) -> RunOutcome:
         spec = TreeSpec(NodeSpec("speak", "say", "say", _where(), {"text": text, "timeout": 120.0}), "<say>")

@@ -16,7 +16,6 @@ import argparse
 import json
 import math
 import sys
-from pathlib import Path
 from typing import Any
 
 HELP = "look once: detections with torso and world positions, an annotated picture"
@@ -169,7 +168,8 @@ class _Source:
         markers = load_markers()
         at = self.args.at or "kitchen"
         if at not in markers:
-            raise PerceiveError(f"unknown marker {at!r}{did_you_mean(at, markers)}; markers: {', '.join(sorted(markers))}")
+            raise PerceiveError(f"unknown marker {at!r}{did_you_mean(at, markers)}; "
+                                f"markers: {', '.join(sorted(markers))}")
         places = [_parse_place(text) for text in self.args.place]
         m = markers[at]
         import subprocess
@@ -251,7 +251,8 @@ def _print_table(report: dict[str, Any], args: argparse.Namespace) -> None:
         torso = " ".join(f"{v:6.3f}" for v in d["torso"])
         world = " ".join(f"{v:6.3f}" for v in d["world"])
         error = f"{d['error'] * 100:6.1f} cm" if "error" in d else ""
-        print(f"{d['label']:<8} {d['confidence']:>5.2f} {box:<19} {d['depth']:>6.3f}  {torso:<22} {world:<22} {error:>9}")
+        print(f"{d['label']:<8} {d['confidence']:>5.2f} {box:<19} {d['depth']:>6.3f}  {torso:<22} {world:<22} "
+              f"{error:>9}")
     for path, what in ((args.output, "annotated image"), (args.map_out, "map with memory"),
                        (args.save_frames, "frames")):
         if path:

@@ -24,11 +24,12 @@ def seen_objects(world: WorldState, now: float, recent: float = RECENT) -> list[
     for o in world.objects.values():
         if o.source != "vision" or now - o.seen_at > recent:
             continue
-        entry: dict[str, Any] = {"label": o.label, "distance": round(math.hypot(o.x - world.pose.x, o.y - world.pose.y), 2)}
+        distance = math.hypot(o.x - world.pose.x, o.y - world.pose.y)
+        entry: dict[str, Any] = {"label": o.label, "distance": round(distance, 2)}
         near = [(math.hypot(o.x - m.x, o.y - m.y), m) for m in world.markers.values()]
         if near:
             gap, marker = min(near, key=lambda pair: pair[0])
             if gap <= NEAR_MARKER:
-                entry["where"] = f"near the {marker.label}"
+                entry["where"] = f"near the {marker.name.replace('_', ' ')}"
         out.append(entry)
     return sorted(out, key=lambda e: e["distance"])

@@ -63,6 +63,7 @@ class Perception:
         located = [p for d in self.detector.detect(frame) if (p := self.locate(frame, d)) is not None]
         touched: list[Remembered] = []
         if self.memory is not None:
-            touched = self.memory.update(
-                [Observation(p.detection.label, *map(float, p.world), p.detection.confidence) for p in located], frame.t)
+            observations = [Observation(p.detection.label, *map(float, p.world), p.detection.confidence)
+                            for p in located]
+            touched = self.memory.update(observations, frame.t)
         return located, touched

@@ -40,7 +40,8 @@ class YoloDetector(Detector):
         try:
             self.net = cv2.dnn.readNetFromONNX(str(path))
         except cv2.error as e:
-            raise DetectorConfigError(f"cannot load {path} as an ONNX network: {str(e).strip().splitlines()[-1]}") from None
+            why = str(e).strip().splitlines()[-1]
+            raise DetectorConfigError(f"cannot load {path} as an ONNX network: {why}") from None
         self.input_size = input_size
 
     def candidates(self, frame: Frame) -> list[Detection]:
