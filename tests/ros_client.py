@@ -50,11 +50,12 @@ def main() -> int:
             sys.stdout.flush()
 
     qos = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+    subscriptions = {}
     for topic in STRING_TOPICS:
         sub_qos = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL) if topic == "bt/status" else qos
         full = node.resolve_topic_name(topic)
-        node.create_subscription(String, topic, lambda m, full=full: emit(
+        subscriptions[topic] = node.create_subscription(String, topic, lambda m, full=full: emit(
             {"topic": full, "data": m.data, "t": time.monotonic()}), sub_qos)
     pose_topic = node.resolve_topic_name("robot_pose")
 
@@ -82,8 +83,8 @@ def main() -> int:
     spinner.start()
 
     deadline = time.monotonic() + DISCOVERY_WAIT
-    while time.monotonic() < deadline and not all(
-            node.count_publishers(node.resolve_topic_name(t)) for t in ("llm/task_intent", "llm/response")):
+    while time.monotonic() < deadline and not all(  # matched, not only seen in the graph
+            subscriptions[t].get_publisher_count() for t in ("llm/task_intent", "llm/response", "bt/events")):
         time.sleep(0.02)
     emit({"ready": True})
     for line in sys.stdin:
