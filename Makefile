@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install -q --disable-pip-version-check
 
-.PHONY: demo test bench system-deps schema docs clean
+.PHONY: demo test bench system-deps schema docs screenshots clean
 
 $(BIN)/python:
 	scripts/venv.sh $(PYTHON) $(VENV)
@@ -42,6 +42,11 @@ test: system-deps $(VENV)/.stamp-test
 ## bench: benchmarks -> bench/results.json and a table
 bench: system-deps $(VENV)/.stamp-bench
 	$(BIN)/python -m bench.run
+
+## screenshots: the web view's browser tests again, saving a picture of each view in docs/images/web_*.png
+screenshots: system-deps $(VENV)/.stamp-test
+	STUART_BT_SCREENSHOTS=docs/images $(BIN)/python -m pytest -q tests/test_web_tree.py \
+		tests/test_web_console.py tests/test_web_map.py tests/test_web_gestures.py
 
 ## schema: regenerate docs/tree.schema.json from the catalogue
 schema: $(VENV)/.stamp-base

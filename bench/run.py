@@ -24,7 +24,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, tick_overhead, web
+from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, tick_overhead, unitree, web
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -39,6 +39,7 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     ros.NAME: ros.run,
     perception.NAME: perception.run,
     web.NAME: web.run,
+    unitree.NAME: unitree.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")

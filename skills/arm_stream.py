@@ -13,10 +13,10 @@ processes: it imports the vendor SDK).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass
 import threading
 import time
-from dataclasses import dataclass
-from typing import Mapping
 
 from unitree_sdk2py.idl.default import unitree_hg_msg_dds__HandCmd_, unitree_hg_msg_dds__LowCmd_
 from unitree_sdk2py.idl.unitree_hg.msg.dds_ import HandCmd_, LowCmd_
@@ -41,6 +41,8 @@ MOTOR_INDEX: dict[str, int] = {
 """G1 motor order on the low-level bus (FIELD_NOTES): waist 12-14, left arm 15-21, right arm 22-28."""
 
 Targets = dict[str, float]
+ARM_REST: Targets = {j: desc.NEUTRAL[j] for side in desc.SIDES for j in desc.arm_joints(side)}
+"""Targets for arm joints a program does not name: the neutral pose (arms down by the sides)."""
 
 
 @dataclass(frozen=True)
@@ -169,7 +171,8 @@ class ArmStreamer:
 
     def _publish(self, weight: float, targets: Mapping[str, float]) -> None:
         msg = unitree_hg_msg_dds__LowCmd_()
-        for joint, q in targets.items():
+        # every arm motor gets a target: one left at kp = kd = 0 would go limp at full weight
+        for joint, q in {**ARM_REST, **targets}.items():
             index = MOTOR_INDEX.get(joint)
             if index is None:
                 continue

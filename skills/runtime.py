@@ -62,7 +62,8 @@ def main(family: str, backends: Mapping[str, str], argv: list[str] | None = None
         print(f"{family} daemon: {options.backend} backend failed to start: {e}", file=sys.stderr)
         return 1
     print(f"{family} daemon: {options.backend} backend up, pid {os.getpid()}", file=sys.stderr)
-    return Daemon(family, options.backend, backend, out_fd, signals, heartbeat_period=options.heartbeat).run()
+    return Daemon(family, options.backend, backend, out_fd, signals, heartbeat_period=options.heartbeat,
+                  watchdog=options.watchdog).run()
 
 
 def _claim_stdout() -> int:
@@ -89,6 +90,9 @@ def _parse_args(family: str, argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--clock", default="wall", help="clock spec from Clock.spec() (default: wall)")
     parser.add_argument("--options", default="{}", help="backend options as a JSON object")
     parser.add_argument("--heartbeat", type=float, default=0.1, help="heartbeat period in wall seconds")
+    parser.add_argument("--watchdog", type=float, default=0.0,
+                        help="stop running motion when nothing came from the framework for this many wall "
+                             "seconds (it sends keep-alives while it ticks); 0: off")
     return parser.parse_args(argv)
 
 
@@ -114,7 +118,7 @@ class Daemon:
     """The protocol loop around one backend."""
 
     def __init__(self, family: str, backend_name: str, backend: Backend, out_fd: int, signals: list[int],
-                 in_fd: int = 0, heartbeat_period: float = 0.1) -> None:
+                 in_fd: int = 0, heartbeat_period: float = 0.1, watchdog: float = 0.0) -> None:
         self.family = family
         self.backend_name = backend_name
         self.backend = backend
@@ -123,6 +127,8 @@ class Daemon:
         self._in_fd = in_fd
         self._heartbeat_period = heartbeat_period
         self._next_heartbeat = time.monotonic()
+        self._watchdog = watchdog  # wall seconds of framework silence that stop running motion; 0: off
+        self._last_heard = time.monotonic()
         self._seq = 0
         self._activities: dict[str, Activity] = {}
         self._lines = p.LineBuffer()
@@ -157,15 +163,30 @@ class Daemon:
             self._stop_everything("stopped", f"{self.family} daemon received {name}")
             self._exiting = True
         if not self._exiting:
+            self._check_watchdog()
             self._poll_activities()
         self._flush()
         if not self._exiting:
             self._heartbeat_if_due()  # after the flush, so a backlog means the reader is behind
             self._flush()
 
+    def _check_watchdog(self) -> None:
+        """A framework that went silent while motion runs (hung, frozen, its machine gone) leaves
+        the robot stopped: the running activities end ``stopped`` and the backend stops. Idle, the
+        daemon waits: stopping would also let go of a held object or a held gesture."""
+        if self._watchdog <= 0 or not self._activities:
+            return
+        silent = time.monotonic() - self._last_heard
+        if silent > self._watchdog:
+            self._stop_everything("stopped", f"{self.family} daemon heard nothing from its framework for "
+                                             f"{silent:.2f} s (watchdog {self._watchdog:g} s)")
+            self._last_heard = time.monotonic()
+
     def _timeout(self) -> float:
-        """Wall seconds until the next heartbeat or the next activity poll that is due."""
+        """Wall seconds until the next heartbeat, the next activity poll or the watchdog is due."""
         timeout = self._next_heartbeat - time.monotonic()
+        if self._watchdog > 0 and self._activities:
+            timeout = min(timeout, self._last_heard + self._watchdog - time.monotonic() + 0.001)
         if self._activities:
             dues = [activity.next_due() for activity in self._activities.values()]
             known = [due for due in dues if due is not None]
@@ -179,6 +200,7 @@ class Daemon:
 
     def _read_input(self) -> None:
         data = os.read(self._in_fd, READ_CHUNK)
+        self._last_heard = time.monotonic()
         if not data:
             self._stop_everything("stopped", f"{self.family} daemon lost its framework (stdin closed)")
             self._exiting = True
@@ -195,7 +217,10 @@ class Daemon:
             self._send(p.error(None, "bad_request", f"line of {line.size}+ bytes exceeds the {p.MAX_LINE}-byte limit"))
             return
         try:
-            request_id, cmd, args = p.parse_request(p.decode(line))
+            message = p.decode(line)
+            if p.is_alive(message):  # the framework's keep-alive: reading it was the point
+                return
+            request_id, cmd, args = p.parse_request(message)
         except p.ProtocolError as e:
             self._send(p.error(e.request_id, "bad_request", e.reason))
             return

@@ -22,8 +22,10 @@ from __future__ import annotations
 
 import json
 import os
+import socket
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from unitree_sdk2py.core.channel import ChannelFactoryInitialize, ChannelPublisher, ChannelSubscriber
 from unitree_sdk2py.rpc.client import Client
@@ -129,13 +131,7 @@ def connect(link: Link) -> None:
 
 
 def _interfaces() -> set[str]:
-    return {name for _, name in _if_nameindex()}
-
-
-def _if_nameindex() -> list[tuple[int, str]]:
-    import socket
-
-    return socket.if_nameindex()
+    return {name for _, name in socket.if_nameindex()}
 
 
 def ready_client(client: Client, service: str, link: Link) -> Client:
@@ -162,7 +158,7 @@ class ServiceClient(Client):
         self._version = version
         self._apis = apis
 
-    def Init(self) -> None:  # noqa: N802 (the SDK's naming)
+    def Init(self) -> None:
         self._SetApiVerson(self._version)
         for api in self._apis:
             self._RegistApi(api, 0)

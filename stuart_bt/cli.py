@@ -195,7 +195,7 @@ VOICE_COMMANDS = {
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
     "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
     "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
-    "map": ("stuart_bt.map_cli:add_map_command", "robot SLAM maps (unitree): start mapping, save, relocalise, close"),
+    "map": ("stuart_bt.map_cli:add_map_command", "robot SLAM maps (unitree): start mapping, save, relocalise, pose, close"),
     "serve": ("stuart_bt.web.cli:add_serve_command", "the live web view: tree, mission console, map, gestures"),
 }
 

@@ -8,6 +8,7 @@ variables (docs/robot.md).
     stuart-bt map start                                   # walk the robot around the space
     stuart-bt map save /home/unitree/lab.pcd              # end mapping and save the point cloud
     stuart-bt map relocalise /home/unitree/lab.pcd --pose 0,0,0
+    stuart-bt map pose                                    # {"pose": {"x", "y", "yaw"}, ...}: for markers
     stuart-bt map close                                   # stop the SLAM service
 """
 
@@ -23,11 +24,12 @@ ACTIONS = {  # action -> (loco daemon command, help)
     "save": ("map_save", "end mapping and save the map to PATH (a .pcd on the robot)"),
     "relocalise": ("relocalise", "localise on the map at PATH from an initial pose"),
     "close": ("slam_close", "stop the SLAM service"),
+    "pose": ("state", "print where the robot is localised now (to write marker files)"),
 }
 
 
 def add_map_command(sub: Any) -> None:
-    p = sub.add_parser("map", help="robot SLAM maps (unitree): start mapping, save, relocalise, close",
+    p = sub.add_parser("map", help="robot SLAM maps (unitree): start mapping, save, relocalise, pose, close",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("action", choices=tuple(ACTIONS), help="; ".join(f"{k}: {v[1]}" for k, v in ACTIONS.items()))
     p.add_argument("path", nargs="?", metavar="PATH", help="map file on the robot (save, relocalise)")

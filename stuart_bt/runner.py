@@ -49,6 +49,7 @@ class RunOptions:
     daemon_options: dict[str, dict[str, Any]] = field(default_factory=dict)
     handshake_timeout: float = 20.0
     heartbeat_timeout: float = 1.0
+    watchdog: float = 2.0  # wall s: a framework silent this long while motion runs leaves a stopped robot
     seed: int = 0  # sim: makes a run repeatable
     record: Path | None = None  # sim: chase-camera video (.mp4 or .gif)
     record_fps: float = 10.0
@@ -106,7 +107,7 @@ class Session:
             self.supervisor = Supervisor(
                 self.options.backend, self.clock, self.events, families=families, options=options,
                 handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
-                run_dir=self.run_dir,
+                watchdog=self.options.watchdog, run_dir=self.run_dir,
             )
             self.supervisor.start()
         self.executor = self.executor_for(self.spec)

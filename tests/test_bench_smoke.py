@@ -40,6 +40,7 @@ EXPECTED = [
     *(f"perception.{figure}" for figure in ("position.error_mean", "position.error_max", "pipeline.rate", "render.fps",
                                             "tour.real_time_factor_with_vision")),
     "web.tick_overhead.flip-10", "web.tick_overhead.flip-100", "web.latency.p50", "web.latency.p99",
+    "unitree.stop_after_tree_loss.p50", "unitree.stop_after_tree_loss.p99", "unitree.command_gap.p99",
 ]
 
 
@@ -48,11 +49,11 @@ def _number(value: object) -> bool:
 
 
 @pytest.mark.slow
-@pytest.mark.timeout(150)
+@pytest.mark.timeout(600)  # generous: a loaded machine must not fail it
 def test_quick_run_writes_every_figure(tmp_path: Path) -> None:
     out = tmp_path / "results.json"
     done = subprocess.run([sys.executable, "-m", "bench.run", "--quick", "-o", str(out)], cwd=REPO,
-                          capture_output=True, text=True, timeout=140)
+                          capture_output=True, text=True, timeout=580)
     assert done.returncode == 0, done.stderr[-2000:]
     report = json.loads(out.read_text())
 

@@ -90,3 +90,14 @@ def test_missing_model_is_one_clear_line(tmp_path) -> None:
     with pytest.raises(ModelUnavailable, match="model file not found.*nothing is downloaded") as info:
         make_conversation("llama", model_path=tmp_path / "absent.gguf")
     assert "\n" not in str(info.value)
+
+
+def test_a_task_proposal_always_has_the_schema_s_shape_whatever_the_tiny_model_thinks(llm: LlamaConversation) -> None:
+    from stuart_bt.mission import proposals
+
+    prompt = proposals.messages("I'd love it if you went over to the kitchen", ["kitchen", "bathroom"], ["bottle"],
+                                ["wave"])
+    raw = llm.propose(prompt, proposals.schema())
+    intents = proposals.parse(raw)  # None would mean the constraint let something else through
+    assert intents is not None and 1 <= len(intents) <= proposals.MAX_TASKS, raw
+    assert all(i.action in proposals.ACTIONS for i in intents)

@@ -110,3 +110,13 @@ def test_unknown_backend_is_refused() -> None:
     with pytest.raises(ValueError, match="unknown conversation backend"):
         make_conversation("gpt9")
     assert make_conversation("none").reply("hi", {}).text
+
+
+def test_a_task_proposal_from_the_server_has_the_schema_s_shape(server_url: str) -> None:
+    from stuart_bt.mission import proposals
+
+    conversation = OpenAIConversation(server_url, "smollm2", timeout=60)
+    raw = conversation.propose(proposals.messages("wave at me please", ["kitchen"], ["cup"], ["wave", "clap"]),
+                               proposals.schema(("gesture", "navigate_to_marker")))
+    intents = proposals.parse(raw, ("gesture", "navigate_to_marker"))
+    assert intents is not None and {i.action for i in intents} <= {"gesture", "navigate_to_marker"}, raw

@@ -22,7 +22,7 @@ def toks(text: str) -> list[str]:
     ("one and a half", 1.5), ("two and a half", 2.5), ("2 and a half", 2.5), ("one and three quarters", 1.75),
     ("one point five", 1.5), ("zero point seven five", 0.75), ("a couple of", 2), ("a couple", 2), ("a few", 3),
     ("point five", 0.5), ("point two five", 0.25), ("point 5", 0.5), ("one point 25", 1.25),
-    ("nought point five", 0.5),
+    ("nought point five", 0.5), ("several", 3),
 ])
 def test_numbers(text: str, value: float) -> None:
     got = read_number(toks(text), 0)
@@ -50,6 +50,7 @@ def test_reading_stops_where_the_number_ends() -> None:
     ("50 cm", 0.5, LENGTH), ("fifty centimetres", 0.5, LENGTH), ("seventy five centimeters", 0.75, LENGTH),
     ("500 mm", 0.5, LENGTH), ("3 feet", 0.9144, LENGTH), ("a yard", 0.9144, LENGTH),
     ("a couple of metres", 2, LENGTH), ("a few metres", 3, LENGTH), ("one metre fifty", 1.5, LENGTH),
+    ("a metre fifty", 1.5, LENGTH), ("a metre and 20 centimetres", 1.2, LENGTH),
     ("one metre and fifty centimetres", 1.5, LENGTH), ("a hundred and twenty centimetres", 1.2, LENGTH),
     ("two steps", 1.0, LENGTH), ("a step", 0.5, LENGTH), ("to meters", 2, LENGTH),
     ("ninety degrees", math.pi / 2, ANGLE), ("90 deg", math.pi / 2, ANGLE), ("45 °", math.pi / 4, ANGLE),

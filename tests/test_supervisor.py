@@ -145,6 +145,31 @@ def test_kill_9_mid_walk_fails_the_walk_fast_and_the_daemon_comes_back(make, rec
     assert turn.ok and turn.result["pose"]["yaw"] == 0.5
 
 
+def test_a_framework_that_goes_silent_mid_walk_leaves_a_stopped_robot(make, recorder):
+    """The watchdog: while the supervisor polls (as the executor does every tick) keep-alives flow
+    and the walk goes on past the watchdog time; once nothing is polled (a frozen tree process),
+    the daemon stops the walk by itself and says why."""
+    sup = make(families=("loco",), watchdog=0.4)
+    sup.start()
+    loco = sup.client("loco")
+    walk = loco.request("navigate", LONG_WALK)
+    started = time.monotonic()
+    while time.monotonic() - started < 1.0:  # 2.5 watchdog periods, polled at 20 Hz
+        time.sleep(0.05)
+        sup.poll()
+    assert not walk.finished, walk.reason
+    time.sleep(1.0)  # silence: no poll, so no keep-alive
+    poll_at_20hz(sup, lambda: walk.finished)
+    assert walk.error_code == "stopped" and "heard nothing from its framework" in walk.reason, walk.reason
+    stopped_at = loco.state["pose"]["x"]
+    time.sleep(0.3)  # three heartbeats later
+    sup.poll()
+    assert loco.state["pose"]["x"] == stopped_at, "the robot kept walking"
+    assert sup.phase("loco") == "ready"  # the daemon itself is fine: it only stopped the robot
+    again = sup.wait(loco.request("turn", {"angle": 0.2}))
+    assert again.ok
+
+
 def test_a_stopped_daemon_is_declared_hung_killed_and_restarted(make, recorder):
     sup = make(families=("loco", "tts"), heartbeat_timeout=0.5)
     sup.start()

@@ -4,31 +4,18 @@ hold / release-99 rule, vendor error codes, and recorded gestures streamed with 
 from __future__ import annotations
 
 import pytest
+from unitree_fake import FakeRobot, robot, unitree_daemon  # robot and unitree_daemon are fixtures
 
-from stuart_bt.clock import ScaledClock
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventStream
-from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
 RAMP = 0.2
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
-
-
 @pytest.fixture
-def gesture(robot, tmp_path):
-    clock = ScaledClock(4.0)  # library durations pass four times faster; the stream keeps 50 Hz
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("gesture",),
-                     options={"gesture": robot.options(ramp=RAMP)}, run_dir=tmp_path, handshake_timeout=30.0)
-    sup.start()
-    yield sup
-    sup.shutdown()
+def gesture(unitree_daemon):
+    return unitree_daemon("gesture", 4.0, ramp=RAMP)  # library durations pass 4x faster; the stream keeps 50 Hz
 
 
 def play(sup: Supervisor, **args):
@@ -71,6 +58,13 @@ def test_a_busy_arm_fails_with_7400_and_a_readable_reason(robot, gesture):
     assert "the arm is busy" in result.reason
 
 
+def test_a_pose_held_elsewhere_fails_with_7401_and_says_to_release(robot, gesture):
+    robot.fault("arm", 7106, 7401)  # held by someone else (the remote, the app): the daemon did not know
+    result = play(gesture, name="clap")
+    assert (result.error_code, result.vendor_code) == ("backend_error", 7401)
+    assert "release it (release arm, action 99) first" in result.reason
+
+
 def test_an_action_the_service_does_not_know_is_unknown_gesture_7402(robot, gesture):
     robot.fault("arm", 7106, 7402)
     result = play(gesture, name="x-ray")
@@ -78,12 +72,13 @@ def test_an_action_the_service_does_not_know_is_unknown_gesture_7402(robot, gest
 
 
 def test_a_recorded_gesture_streams_50_hz_targets_with_the_blend_ramp_and_the_crc(robot, gesture):
-    before = len(robot.topic("rt/arm_sdk"))
+    before, mark = len(robot.topic("rt/arm_sdk")), len(robot.records)
     frames = [{"t": 0.0, "joints": {"right_shoulder_pitch_joint": 0.0}},
               {"t": 1.0, "joints": {"right_shoulder_pitch_joint": -1.0}}]
     result = play(gesture, keyframes=frames)
     assert result.ok, result.reason
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out's last sample")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out's last sample",
+                   since=mark)
     samples = robot.topic("rt/arm_sdk")[before:]
     weights = [s["weight"] for s in samples]
     assert all(s["crc_ok"] for s in samples)
@@ -94,7 +89,8 @@ def test_a_recorded_gesture_streams_50_hz_targets_with_the_blend_ramp_and_the_cr
     assert weights[peak:] == sorted(weights[peak:], reverse=True) and weights[-1] == 0.0
     shoulder = [s["q"]["22"] for s in samples]  # right shoulder pitch is motor 22
     assert shoulder[0] == 0.0 and shoulder[-1] == pytest.approx(-1.0)
-    assert all(s["kp"]["22"] > 0 for s in samples)
+    # every arm motor is commanded (the unnamed ones at rest): none is left limp at kp = 0
+    assert all(s["kp"][str(motor)] > 0 for s in samples for motor in range(15, 29))
 
 
 def test_a_recorded_gesture_beyond_the_joint_limits_is_refused_before_anything_moves(robot, gesture):

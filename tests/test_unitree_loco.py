@@ -6,40 +6,18 @@ from __future__ import annotations
 import math
 
 import pytest
+from unitree_fake import FakeRobot, robot, start_failure, unitree_daemon  # robot and unitree_daemon are fixtures
 
-from stuart_bt.clock import ScaledClock
-from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-from stuart_bt.events import EventRecorder, EventStream
-from unitree_fake import FakeRobot
+from stuart_bt.daemon.supervisor import Supervisor
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
 START = {"x": 1.0, "y": 2.0, "yaw": 0.0}
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot(nav_speed=8.0) as fake:
-        yield fake
-
-
 @pytest.fixture
-def loco(robot, tmp_path):
-    made: list[Supervisor] = []
-
-    def start(**options) -> Supervisor:
-        clock = ScaledClock(1.0)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                         options={"loco": robot.options(start_pose=START, map="/home/unitree/lab.pcd", **options)},
-                         run_dir=tmp_path, handshake_timeout=30.0)
-        sup.recorder = EventRecorder(sup.events)
-        made.append(sup)
-        sup.start()
-        return sup
-
-    yield start
-    for sup in made:
-        sup.shutdown()
+def loco(unitree_daemon):
+    return lambda **options: unitree_daemon("loco", start_pose=START, map="/home/unitree/lab.pcd", **options)
 
 
 def run(sup: Supervisor, cmd: str, timeout: float = 20.0, **args):
@@ -128,8 +106,9 @@ def test_pause_and_resume_reach_the_navigation_service(robot, loco):
     sup = loco()
     client = sup.client("loco")
     here = run(sup, "state").result["pose"]
+    mark = len(robot.records)
     walk = client.request("navigate", {"pose": {"x": here["x"] + 8.0, "y": here["y"], "yaw": None}})
-    robot.wait_for(lambda r: r.get("api") == 1102, what="the navigation goal")
+    robot.wait_for(lambda r: r.get("api") == 1102, what="the navigation goal", since=mark)
     assert run(sup, "pause").result == {"paused": True}
     assert run(sup, "resume").result == {"paused": False}
     assert sup.wait(walk, timeout=20).ok
@@ -148,26 +127,29 @@ def test_mapping_commands_send_the_slam_service_its_ids_and_paths(robot, loco):
 
 
 def test_a_map_that_will_not_load_refuses_ready_with_code_507(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                     options={"loco": robot.options(map="/home/unitree/missing.pcd")}, run_dir=tmp_path,
-                     handshake_timeout=30.0)
-    with pytest.raises(DaemonStartError) as err:
-        sup.start()
-    sup.shutdown()
-    assert "vendor code 507 (the map could not be loaded)" in str(err.value)
-    assert "Traceback" not in str(err.value)
+    message = start_failure("loco", robot.options(map="/home/unitree/missing.pcd"), tmp_path)
+    assert "vendor code 507 (the map could not be loaded)" in message
+    assert "Traceback" not in message
 
 
 def test_a_silent_service_refuses_ready_naming_service_interface_and_domain(tmp_path):
     with FakeRobot(silent="sport") as silent:
-        clock = ScaledClock(1.0)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("loco",),
-                         options={"loco": silent.options(probe_timeout=0.5)}, run_dir=tmp_path,
-                         handshake_timeout=30.0)
-        with pytest.raises(DaemonStartError) as err:
-            sup.start()
-        sup.shutdown()
-    message = str(err.value)
+        message = start_failure("loco", silent.options(probe_timeout=0.5), tmp_path)
     assert "'sport' service does not answer on interface lo, DDS domain" in message
     assert str(silent.domain) in message
+
+
+def test_a_navigation_service_that_does_not_answer_fails_with_the_timeout_code(robot, loco):
+    sup = loco()
+    robot.fault("slam_operate", 1102, None)  # no answer at all
+    walk = run(sup, "navigate", pose={"x": 2.0, "y": 2.0, "yaw": None})
+    assert (walk.error_code, walk.vendor_code) == ("backend_error", 3104)
+    assert "did not answer in time" in walk.reason
+
+
+def test_older_firmware_uses_the_loco_service_and_start_fsm_200(robot, loco):
+    sport_before = len(robot.rpc("sport", 7105))
+    sup = loco(firmware="loco", stand_up=True)
+    assert robot.rpc("loco", 7101)[-1]["parameter"] == {"data": 200}
+    assert run(sup, "turn", angle=0.5).ok
+    assert robot.rpc("loco", 7105) and len(robot.rpc("sport", 7105)) == sport_before

@@ -9,7 +9,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
@@ -29,6 +28,9 @@ def test_map_start_save_relocalise_and_close_send_the_slam_ids_and_paths():
         assert json.loads(saved.stdout) == {"saved": "/home/unitree/lab.pcd"}
         relocalised = stuart("map", "relocalise", "/home/unitree/lab.pcd", "--pose", "1.5,-2,1.5708", env=robot.env)
         assert relocalised.returncode == 0, relocalised.stderr
+        pose = stuart("map", "pose", env=robot.env)
+        assert pose.returncode == 0, pose.stderr
+        assert json.loads(pose.stdout)["pose"] == pytest.approx({"x": 1.5, "y": -2.0, "yaw": 1.5708}, abs=1e-3)
         assert stuart("map", "close", env=robot.env).returncode == 0
         calls = {r["api"]: r["parameter"]["data"] for r in robot.rpc("slam_operate")}
     assert set(calls) == {1801, 1802, 1804, 1901}

@@ -4,12 +4,10 @@ gate, IK-planned targets within the limits, the hand closing, the release blendi
 from __future__ import annotations
 
 import pytest
-
-from stuart_bt.clock import ScaledClock
-from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventStream
 from stuart_bt.sim.robot import description as desc
-from unitree_fake import FakeRobot
+from unitree_fake import robot, unitree_daemon  # robot and unitree_daemon are fixtures
+
+from stuart_bt.daemon.supervisor import Supervisor
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 pytest.importorskip("pinocchio", reason="the pick planner needs the 'ik' extra")
@@ -19,21 +17,9 @@ HERE = {"x": 0.0, "y": 0.0, "yaw": 0.0}
 RIGHT_ARM_MOTORS = range(22, 29)
 
 
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
-
-
 @pytest.fixture
-def pick(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("pick",),
-                     options={"pick": robot.options(objects=OBJECTS, ramp=0.2)}, run_dir=tmp_path,
-                     handshake_timeout=30.0)
-    sup.start()
-    yield sup
-    sup.shutdown()
+def pick(unitree_daemon):
+    return unitree_daemon("pick", objects=OBJECTS, ramp=0.2)
 
 
 def request(sup: Supervisor, cmd: str, **args):
@@ -52,7 +38,10 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     assert grasp.result["object"] == "bottle" and grasp.result["arm"] == "right"
     samples = robot.topic("rt/arm_sdk")[before_arm:]
     assert all(s["crc_ok"] for s in samples)
-    assert samples[0]["weight"] < 0.1 and samples[-1]["weight"] == 1.0  # blended in, holding
+    weights = [s["weight"] for s in samples]
+    full = weights.index(1.0)
+    assert 0 < full and weights[:full] == sorted(weights[:full]) and weights[0] < 0.5  # ramped in, not jumped
+    assert samples[-1]["weight"] == 1.0  # holding
     limits = desc.arm_limits("right")
     for motor, joint in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")):
         low, high = limits[joint]
@@ -62,12 +51,15 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     assert any(abs(lifted[str(m)] - desc.NEUTRAL[j]) > 0.1 for m, j in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")))
     assert set(planned) == set(desc.arm_joints("right"))
     hands = robot.topic("rt/dex3/right/cmd")[before_hand:]
-    assert max(abs(q) for q in hands[0]["q"]) == 0.0 and max(abs(q) for q in hands[-1]["q"]) > 0.3  # open, then closed
+    grip = [max(abs(q) for q in h["q"]) for h in hands]
+    assert 0.0 in grip  # open while approaching ...
+    assert grip[-1] > 0.3 and grip.index(grip[-1]) > grip.index(0.0)  # ... then closed
 
-    before_arm = len(robot.topic("rt/arm_sdk"))
+    before_arm, mark = len(robot.topic("rt/arm_sdk")), len(robot.records)
     put = request(pick, "release", robot_pose=HERE)
     assert pick.wait(put, timeout=20).ok, put.reason
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out",
+                   since=mark)
     samples = robot.topic("rt/arm_sdk")[before_arm:]
     assert samples[0]["weight"] == 1.0 and samples[-1]["weight"] == 0.0
     assert put.result["position"]["z"] == pytest.approx(0.95, abs=0.01)
@@ -82,10 +74,13 @@ def test_an_object_out_of_reach_is_refused_before_anything_moves(robot, pick):
 
 
 def test_stopping_a_pick_blends_the_arm_back_to_the_controller(robot, pick):
+    mark = len(robot.records)
     grasp = request(pick, "pick", object="bottle", robot_pose=HERE)
     pick.wait(request(pick, "confirm"), timeout=5)
-    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] > 0.5, what="the arm blended in")
+    robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] > 0.5, what="the arm blended in",
+                   since=mark)
     assert pick.wait(request(pick, "stop"), timeout=5).ok
     assert grasp.error_code == "stopped"
-    last = robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out")
+    last = robot.wait_for(lambda r: r.get("topic") == "rt/arm_sdk" and r["weight"] == 0.0, what="the ramp-out",
+                          since=mark)
     assert last["crc_ok"]

@@ -12,9 +12,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from unitree_fake import FakeRobot
 
 from stuart_bt import gestures
-from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
@@ -54,9 +54,10 @@ def test_the_lab_tour_completes_and_the_robot_got_the_tree_s_navigation_speech_a
         stations = [n["marker"] for n in navigations]
         assert stations == [f"station_{i}" for i in range(1, 7)]
         goals = [r["parameter"]["data"]["targetPose"] for r in robot.rpc("slam_operate", 1102)]
-        final_legs = [g for g in goals if any(abs(g["x"] - MARKERS[s]["x"]) < 1e-3 and abs(g["y"] - MARKERS[s]["y"]) < 1e-3
-                                              for s in stations)]
-        assert [(g["x"], g["y"]) for g in final_legs] == [(MARKERS[s]["x"], MARKERS[s]["y"]) for s in stations]
+        station_xy = [(MARKERS[s]["x"], MARKERS[s]["y"]) for s in stations]
+        final_legs = [(g["x"], g["y"]) for g in goals
+                      if any(abs(g["x"] - x) < 1e-3 and abs(g["y"] - y) < 1e-3 for x, y in station_xy)]
+        assert final_legs == station_xy
         assert all(r["code"] == 0 for r in robot.rpc("slam_operate", 1102))
 
         said = [c["args"]["text"] for c in commands if c["family"] == "tts" and c["cmd"] == "say"]
@@ -100,3 +101,24 @@ def test_killing_the_tree_process_makes_the_loco_daemon_stop_the_robot(tmp_path)
         print(f"stop arrived {stop['t'] - moves[-1]['t']:.3f} s after the last motion command")
         late = [r for r in moves if r["t"] > stop["t"]]
         assert late == []  # nothing moved the robot again after the stop
+
+
+def test_a_daemon_options_file_reaches_the_daemons(tmp_path):
+    options = tmp_path / "robot.yaml"
+    options.write_text("tts:\n  volume: 55\ngesture:\n  ramp: 0.3\n")
+    with FakeRobot() as robot:
+        run = subprocess.run([*CLI, "run", "trees/greet.yaml", "--backend", "unitree", "--speed", "10",
+                              "--view", "none", "--daemon-options", str(options)],
+                             cwd=REPO, env=robot.env, capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, run.stderr[-2000:]
+        assert robot.rpc("voice", 1006)[-1]["parameter"] == {"volume": 55}
+
+
+def test_a_daemon_options_file_naming_no_family_is_one_message(tmp_path):
+    options = tmp_path / "robot.yaml"
+    options.write_text("tss:\n  volume: 55\n")
+    run = subprocess.run([*CLI, "run", "trees/greet.yaml", "--backend", "unitree", "--daemon-options", str(options)],
+                         cwd=REPO, capture_output=True, text=True, timeout=60)
+    assert run.returncode == 1
+    assert run.stderr.strip() == (f"stuart-bt: --daemon-options {options}: unknown family 'tss' (did you mean 'tts'?); "
+                                  "families: loco, tts, gesture, pick, vision")

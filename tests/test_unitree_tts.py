@@ -6,36 +6,18 @@ from __future__ import annotations
 import shutil
 
 import pytest
+from unitree_fake import robot, start_failure, unitree_daemon  # robot and unitree_daemon are fixtures
 
-from stuart_bt.clock import ScaledClock
-from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-from stuart_bt.events import EventStream
-from unitree_fake import FakeRobot
+from stuart_bt.daemon.supervisor import Supervisor
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
-
-
-@pytest.fixture(scope="module")
-def robot():
-    with FakeRobot() as fake:
-        yield fake
+NEEDS_ESPEAK = pytest.mark.skipif(shutil.which("espeak-ng") is None,
+                                  reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
 
 
 @pytest.fixture
-def tts(robot, tmp_path):
-    made: list[Supervisor] = []
-
-    def start(factor: float = 8.0, **options) -> Supervisor:
-        clock = ScaledClock(factor)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=("tts",),
-                         options={"tts": robot.options(**options)}, run_dir=tmp_path, handshake_timeout=30.0)
-        made.append(sup)
-        sup.start()
-        return sup
-
-    yield start
-    for sup in made:
-        sup.shutdown()
+def tts(unitree_daemon):
+    return lambda factor=8.0, **options: unitree_daemon("tts", factor, **options)
 
 
 def say(sup: Supervisor, text: str, timeout: float = 20.0):
@@ -54,7 +36,7 @@ def test_the_robot_voice_gets_the_text_and_speaker_and_the_tree_gets_a_duration(
     assert result.result["duration"] == result.accepted_data["duration"]
 
 
-@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
+@NEEDS_ESPEAK
 def test_local_speech_streams_16_khz_int16_in_three_second_chunks(robot, tts):
     sup = tts(engine="espeak-ng", lead_seconds=100.0)  # send every chunk at once: the test checks them all
     before = len(robot.rpc("voice", 1003))
@@ -70,26 +52,22 @@ def test_local_speech_streams_16_khz_int16_in_three_second_chunks(robot, tts):
     assert len({c["parameter"]["stream_id"] for c in chunks}) == 1
 
 
-@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="local synthesis needs espeak-ng (apt-get install espeak-ng)")
+@NEEDS_ESPEAK
 def test_cancelling_streamed_speech_sends_play_stop(robot, tts):
     sup = tts(factor=1.0, engine="espeak-ng")
     client = sup.client("tts")
+    mark = len(robot.records)
     request = client.request("say", {"text": "A long sentence that will be cut short by a cancel from the tree."})
-    robot.wait_for(lambda r: r.get("api") == 1003, what="the first chunk")
+    robot.wait_for(lambda r: r.get("api") == 1003, what="the first chunk", since=mark)
     sup.wait(client.request("cancel", {"target": request.id}), timeout=5)
     assert request.error_code == "cancelled"
     assert robot.rpc("voice", 1004)[-1]["parameter"] == {"app_name": "stuart_bt"}
 
 
 def test_piper_without_a_voice_file_refuses_to_start_with_one_clear_message(robot, tmp_path):
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=("tts",),
-                     options={"tts": robot.options(engine="piper")}, run_dir=tmp_path, handshake_timeout=30.0)
-    with pytest.raises(DaemonStartError) as err:
-        sup.start()
-    sup.shutdown()
-    assert "piper needs the 'piper' program and a local voice model (piper_model option)" in str(err.value)
-    assert "Traceback" not in str(err.value)
+    message = start_failure("tts", robot.options(engine="piper"), tmp_path)
+    assert "piper needs the 'piper' program and a local voice model (piper_model option)" in message
+    assert "Traceback" not in message
 
 
 def test_a_voice_service_error_fails_the_utterance_with_its_code(robot, tts):

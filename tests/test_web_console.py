@@ -5,18 +5,12 @@ from __future__ import annotations
 
 import pytest
 
-from web_support import Served, chromium_page, screenshot
+from web_support import Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
 
-playwright = pytest.importorskip("playwright.sync_api", reason="the browser tests need playwright (make test installs it)")
-pytest.importorskip("starlette", reason="the web view needs the web extra")
+browser_tests()
 
 pytestmark = pytest.mark.slow
 WAIT = 60_000
-
-
-@pytest.fixture
-def page(tmp_path):
-    yield from chromium_page(playwright, tmp_path)
 
 
 def say(page, text: str) -> None:

@@ -11,18 +11,12 @@ from pathlib import Path
 
 import pytest
 
-from web_support import Served, chromium_page, screenshot
+from web_support import Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
 
-playwright = pytest.importorskip("playwright.sync_api", reason="the browser tests need playwright (make test installs it)")
-pytest.importorskip("starlette", reason="the web view needs the web extra")
+browser_tests()
 
 pytestmark = pytest.mark.slow
 WAIT = 60_000
-
-
-@pytest.fixture
-def page(tmp_path):
-    yield from chromium_page(playwright, tmp_path)
 
 
 @pytest.fixture
@@ -68,7 +62,6 @@ def test_a_marker_added_on_the_map_survives_a_reload_and_can_be_walked_to(page, 
 
         page.reload()
         page.wait_for_selector('#marker-table tr[data-marker="coffee_corner"]')
-        screenshot(page, "map")
 
         page.check('input[name=map-mode][value=move]')
         drag(page, screen(page, 2.0, 1.0), screen(page, 2.5, 1.0))
@@ -90,8 +83,10 @@ def test_a_marker_added_on_the_map_survives_a_reload_and_can_be_walked_to(page, 
         page.mouse.click(*screen(page, 1.0, -1.0))
         page.wait_for_function("stuart.map.pose && Math.hypot(stuart.map.pose.x - 1.0, stuart.map.pose.y + 1.0) < 0.2",
                                timeout=WAIT)
-        shown = page.evaluate("`x ${stuart.map.pose.x.toFixed(2)} m, y ${stuart.map.pose.y.toFixed(2)} m`")
-        assert page.text_content("#robot-pose").startswith(shown)
+        page.wait_for_function("document.body.dataset.busy === 'no'", timeout=WAIT)
+        assert page.evaluate("document.getElementById('robot-pose').textContent.startsWith("
+                             "`x ${stuart.map.pose.x.toFixed(2)} m, y ${stuart.map.pose.y.toFixed(2)} m`)")
+        screenshot(page, "map")
 
         page.locator('#marker-table tr[data-marker="coffee"]').locator("text=✕").click()
         page.wait_for_function("!document.querySelector('#marker-table tr[data-marker=\"coffee\"]')")

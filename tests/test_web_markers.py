@@ -28,7 +28,8 @@ def store(tmp_path) -> MarkerStore:
 
 def test_an_added_marker_is_in_the_file_and_loads_as_a_marker(store):
     doc = store.edit({"op": "add", "name": "coffee", "x": 2.0, "y": 1.0, "yaw": 4.0, "display_name": "Coffee"})
-    assert doc["markers"]["coffee"] == {"x": 2.0, "y": 1.0, "yaw": round(4.0 - 2 * math.pi, 4), "display_name": "Coffee"}
+    assert doc["markers"]["coffee"] == {"x": 2.0, "y": 1.0, "yaw": round(4.0 - 2 * math.pi, 4),
+                                        "display_name": "Coffee"}
     marker = load_markers(store.path)["coffee"]
     assert (marker.x, marker.y, marker.label) == (2.0, 1.0, "Coffee")
 

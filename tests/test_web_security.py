@@ -13,23 +13,18 @@ import urllib.request
 
 import pytest
 
-from web_support import REPO, Served, chromium_page
+from web_support import REPO, Served, browser_tests, page  # noqa: F401 (page: the browser fixture)
 
-playwright = pytest.importorskip("playwright.sync_api", reason="the browser tests need playwright (make test installs it)")
-pytest.importorskip("starlette", reason="the web view needs the web extra")
+browser_tests()
 websockets_sync = pytest.importorskip("websockets.sync.client", reason="the socket check needs websockets (web extra)")
 
 pytestmark = pytest.mark.slow
 OFF_LOOPBACK = "127.0.0.2"  # not 127.0.0.1: the token rule applies (and it never leaves this machine)
 
 
-@pytest.fixture
-def page(tmp_path):
-    yield from chromium_page(playwright, tmp_path)
-
-
 def http(url: str, method: str = "GET", headers: dict[str, str] | None = None) -> tuple[int, dict]:
-    request = urllib.request.Request(url, method=method, headers=headers or {}, data=b"{}" if method == "POST" else None)
+    body = b"{}" if method == "POST" else None
+    request = urllib.request.Request(url, method=method, headers=headers or {}, data=body)
     try:
         with urllib.request.urlopen(request, timeout=10) as response:
             return response.status, json.loads(response.read() or b"null")

@@ -8,19 +8,13 @@ import sys
 
 import pytest
 
-from web_support import REPO, Served, chromium_page, screenshot
+from web_support import REPO, Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
 
-playwright = pytest.importorskip("playwright.sync_api", reason="the browser tests need playwright (make test installs it)")
+browser_tests()
 pytest.importorskip("mujoco", reason="the tour runs in the simulator (the sim extra)")
-pytest.importorskip("starlette", reason="the web view needs the web extra")
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.timeout(300)]  # the simulator on a loaded machine
 WAIT = 90_000  # ms: a loaded two-core machine runs the world more slowly
-
-
-@pytest.fixture
-def page(tmp_path):
-    yield from chromium_page(playwright, tmp_path)
 
 
 def node(page, path: str):
@@ -73,8 +67,8 @@ def test_the_tour_ticks_in_the_browser_and_stops_and_continues(page):
 
 def test_a_saved_log_replays_with_timeline_collapse_and_zoom(page, tmp_path):
     log = tmp_path / "greet.jsonl"
-    subprocess.run([sys.executable, "-m", "stuart_bt.cli", "run", "trees/greet.yaml", "--backend", "dry", "--speed", "50",
-                    "--view", "none", "--log", str(log)], cwd=REPO, check=True, capture_output=True, timeout=120)
+    subprocess.run([sys.executable, "-m", "stuart_bt.cli", "run", "trees/greet.yaml", "--backend", "dry",
+                    "--speed", "50", "--view", "none", "--log", str(log)], cwd=REPO, check=True, capture_output=True, timeout=120)
     with Served("--replay", str(log)) as served:
         page.goto(served.url)
         node(page, "greet").wait_for()

@@ -6,25 +6,39 @@ Nothing here imports the vendor SDK: the fake runs in its own process, like the 
 
 from __future__ import annotations
 
+import fcntl
 import itertools
 import json
 import os
 import subprocess
 import sys
+import tempfile
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import pytest
 
 FAKE = Path(__file__).parent / "fakes" / "unitree_services.py"
-_domains = itertools.count((os.getpid() * 7) % 60)
+DOMAINS = range(160, 230)
+_start = itertools.count((os.getpid() * 7) % len(DOMAINS))
 
 
-def private_domain() -> int:
-    """A DDS domain id no other test (or helper's test run) is likely to use at the same time."""
-    return 160 + next(_domains) % 60
+def private_domain() -> tuple[int, Any]:
+    """A DDS domain id no other fake on this machine holds (any test run, any checkout): an
+    exclusive lock on a file per domain, held while the fake runs. Returns (domain, lock file)."""
+    first = next(_start)
+    for k in range(len(DOMAINS)):
+        domain = DOMAINS[(first + k) % len(DOMAINS)]
+        lock = open(Path(tempfile.gettempdir()) / f"stuart_bt-dds-domain-{domain}.lock", "w")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return domain, lock
+        except OSError:
+            lock.close()
+    raise RuntimeError(f"every test DDS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use")
 
 
 class FakeRobot:
@@ -32,9 +46,13 @@ class FakeRobot:
 
     def __init__(self, domain: int | None = None, nav_speed: float = 4.0, silent: str = "") -> None:
         pytest.importorskip("unitree_sdk2py", reason="the unitree backend needs the 'robot' extra")
-        self.domain = private_domain() if domain is None else domain
+        self._domain_lock = None
+        if domain is None:
+            domain, self._domain_lock = private_domain()
+        self.domain = domain
         self.records: list[dict[str, Any]] = []
         self._lock = threading.Lock()
+        self._pings = 0
         self.proc = subprocess.Popen(
             [sys.executable, str(FAKE), "--domain", str(self.domain), "--nav-speed", str(nav_speed),
              "--silent", silent],
@@ -57,12 +75,24 @@ class FakeRobot:
             with self._lock:
                 self.records.append(record)
 
+    def sync(self) -> None:
+        """Wait until every request the fake answered so far has been read here (its records
+        are written before its answers, and a pong after them)."""
+        self._pings += 1
+        n, mark = self._pings, len(self.records)
+        self.order(ping=n)
+        self.wait_for(lambda r: r["kind"] == "pong" and r["n"] == n, what="the fake's pong", since=mark)
+
     def rpc(self, service: str | None = None, api: int | None = None) -> list[dict[str, Any]]:
+        """Requests the fake answered (up to now: synced first)."""
+        self.sync()
         with self._lock:
             return [r for r in self.records if r["kind"] == "rpc" and service in (None, r["service"])
                     and api in (None, r["api"])]
 
     def topic(self, name: str) -> list[dict[str, Any]]:
+        """Samples the fake received on ``name`` (up to now: synced first)."""
+        self.sync()
         with self._lock:
             return [r for r in self.records if r["kind"] == "topic" and r["topic"] == name]
 
@@ -78,9 +108,10 @@ class FakeRobot:
         self.order(fault=spec)
 
     def wait_for(self, predicate: Callable[[dict[str, Any]], bool], timeout: float = 10.0,
-                 what: str = "a record") -> dict[str, Any]:
+                 what: str = "a record", since: int = 0) -> dict[str, Any]:
+        """The first record from index ``since`` on that satisfies ``predicate``."""
         deadline = time.monotonic() + timeout
-        seen = 0
+        seen = since
         while time.monotonic() < deadline:
             with self._lock:
                 fresh = self.records[seen:]
@@ -101,9 +132,61 @@ class FakeRobot:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait()
+        if self._domain_lock is not None:
+            self._domain_lock.close()  # the domain is free for the next fake
 
-    def __enter__(self) -> "FakeRobot":
+    def __enter__(self) -> FakeRobot:
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+# -- fixtures the unitree test files import --------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def robot():
+    """One fake robot per test file (starting one takes a few seconds)."""
+    with FakeRobot(nav_speed=8.0) as fake:
+        yield fake
+
+
+@pytest.fixture
+def unitree_daemon(robot, tmp_path):
+    """``unitree_daemon(family, factor=1.0, **options)``: a started unitree daemon talking to
+    ``robot``; shut down after the test."""
+    from stuart_bt.clock import ScaledClock
+    from stuart_bt.daemon.supervisor import Supervisor
+    from stuart_bt.events import EventRecorder, EventStream
+
+    made: list[Supervisor] = []
+
+    def start(family: str, factor: float = 1.0, **options: Any) -> Supervisor:
+        clock = ScaledClock(factor)
+        sup = Supervisor("unitree", clock, EventStream(clock), families=(family,),
+                         options={family: robot.options(**options)}, run_dir=tmp_path, handshake_timeout=30.0)
+        sup.recorder = EventRecorder(sup.events)
+        made.append(sup)
+        sup.start()
+        return sup
+
+    yield start
+    for sup in made:
+        sup.shutdown()
+
+
+def start_failure(family: str, options: dict[str, Any], run_dir: Path) -> str:
+    """The message of the DaemonStartError a unitree daemon with ``options`` gives."""
+    from stuart_bt.clock import ScaledClock
+    from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
+    from stuart_bt.events import EventStream
+
+    clock = ScaledClock(1.0)
+    sup = Supervisor("unitree", clock, EventStream(clock), families=(family,), options={family: options},
+                     run_dir=run_dir, handshake_timeout=30.0)
+    try:
+        with pytest.raises(DaemonStartError) as err:
+            sup.start()
+    finally:
+        sup.shutdown()
+    return str(err.value)

@@ -86,6 +86,20 @@ class Served:
         self.close()
 
 
+def browser_tests() -> Any:
+    """Skip the calling test module, with the reason, unless playwright and the web extra are
+    installed; the playwright sync API."""
+    pytest.importorskip("starlette", reason="the web view needs the web extra (make test installs it)")
+    return pytest.importorskip("playwright.sync_api",
+                               reason="the browser tests need playwright (make test installs it)")
+
+
+@pytest.fixture
+def page(tmp_path: Path) -> Iterator[Any]:
+    """The fixture of every browser test: a page in a fresh headless Chromium profile."""
+    yield from chromium_page(browser_tests(), tmp_path)
+
+
 def chromium_page(playwright_mod: Any, tmp_path: Path) -> Iterator[Any]:
     """A page in a fresh headless Chromium profile."""
     if not Path(CHROMIUM).exists():

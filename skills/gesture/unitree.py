@@ -39,7 +39,7 @@ class ActionSequence(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreeGesture", steps: list[gestures.Gesture], played: list[str]) -> None:
+    def __init__(self, backend: UnitreeGesture, steps: list[gestures.Gesture], played: list[str]) -> None:
         self.backend = backend
         self.steps = steps
         self.played = played
@@ -80,7 +80,7 @@ class StreamedGesture(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreeGesture", frames: list[Keyframe]) -> None:
+    def __init__(self, backend: UnitreeGesture, frames: list[Keyframe]) -> None:
         self.backend = backend
         self.frames = frames
 

@@ -81,7 +81,7 @@ class MapWalk(Activity):
     resource = "motion"
     report_every = 0.5
 
-    def __init__(self, backend: "UnitreeLoco", legs: list[tuple[float, float, float]], goal: NavigateGoal,
+    def __init__(self, backend: UnitreeLoco, legs: list[tuple[float, float, float]], goal: NavigateGoal,
                  length: float) -> None:
         self.backend = backend
         self.legs = legs
@@ -167,7 +167,7 @@ class OdometryMove(Activity):
     resource = "motion"
     report_every = 0.5
 
-    def __init__(self, backend: "UnitreeLoco", goal: RelativeGoal | None, angle: float | None,
+    def __init__(self, backend: UnitreeLoco, goal: RelativeGoal | None, angle: float | None,
                  tolerance: float, yaw_tolerance: float, marker: str | None) -> None:
         self.backend = backend
         self.goal = goal
@@ -223,11 +223,10 @@ class OdometryMove(Activity):
         if self.phase == "turn":
             if abs(self.turn_left) <= self.yaw_tolerance:
                 b.halt()
-                result = {"pose": pose.to_dict(), "marker": self.marker,
-                          "distance": round(self.start_pose.distance_to(pose), 4)}
                 if self.angle is not None:
-                    result = {"pose": pose.to_dict(), "angle": self.angle, "distance": 0.0}
-                return Done(result)
+                    return Done({"pose": pose.to_dict(), "angle": self.angle, "distance": 0.0})
+                return Done({"pose": pose.to_dict(), "marker": self.marker,
+                             "distance": round(self.start_pose.distance_to(pose), 4)})
             rate = min(max(TURN_GAIN * abs(self.turn_left), b.min_turn_rate), b.max_turn_rate)
             b.send_velocity(0.0, 0.0, math.copysign(rate, self.turn_left))
         if now >= self._next_report:
@@ -245,7 +244,7 @@ class SlamCall(Activity):
 
     resource = None
 
-    def __init__(self, backend: "UnitreeLoco", what: str, api: int, data: dict[str, Any],
+    def __init__(self, backend: UnitreeLoco, what: str, api: int, data: dict[str, Any],
                  result: dict[str, Any], error: str = "backend_error") -> None:
         self.backend, self.what, self.api, self.data, self.result, self.error = backend, what, api, data, result, error
 
@@ -263,7 +262,7 @@ class SlamCall(Activity):
 class PauseWalk(Activity):
     resource = None
 
-    def __init__(self, backend: "UnitreeLoco", pause: bool) -> None:
+    def __init__(self, backend: UnitreeLoco, pause: bool) -> None:
         self.backend, self.pause = backend, pause
 
     def start(self, now: float) -> None:
@@ -290,17 +289,19 @@ class UnitreeLoco(LocoBackend):
         super().__init__(clock, options)
         self.link = vendor.link_from(options, "loco", OWN_OPTIONS)
         where = "loco unitree options"
-        num = lambda key, default, minimum=0.0: vendor.startup_option(  # noqa: E731
+        num = lambda key, default, minimum=0.0: vendor.startup_option(
             lambda: a.number(options, key, where, default=default, minimum=minimum))
         self.max_leg = num("max_leg", 10.0, 0.5)
         self.max_speed, self.min_speed = num("max_speed", 0.5, 0.05), num("min_speed", 0.3, 0.0)
         self.max_lateral_speed = num("max_lateral_speed", 0.3, 0.05)
         self.max_turn_rate, self.min_turn_rate = num("max_turn_rate", 0.6, 0.05), num("min_turn_rate", 0.25, 0.0)
-        self.control_period, self.command_duration = num("control_period", 0.05, 0.01), num("command_duration", 0.3, 0.05)
+        self.control_period = num("control_period", 0.05, 0.01)
+        self.command_duration = num("command_duration", 0.3, 0.05)
         self.odom_timeout, self.arrival_tolerance = num("odom_timeout", 1.0, 0.05), num("arrival_tolerance", 0.5, 0.0)
         self.leg_timeout = num("leg_timeout", 60.0, 1.0)
-        if self.min_speed > self.max_speed or self.min_turn_rate > self.max_turn_rate:
-            raise vendor.StartupError("loco unitree options: min_speed/min_turn_rate must not exceed the maxima")
+        if not self.min_speed <= min(self.max_speed, self.max_lateral_speed) or self.min_turn_rate > self.max_turn_rate:
+            raise vendor.StartupError(f"{where}: min_speed must not exceed max_speed or max_lateral_speed, nor "
+                                      "min_turn_rate max_turn_rate (below the dead band the robot does not move)")
         self._start_pose = vendor.startup_option(lambda: a.pose(options, "start_pose", where)) \
             if "start_pose" in options else Pose()
         self.grid = None
@@ -323,7 +324,11 @@ class UnitreeLoco(LocoBackend):
         if options.get("slam", True):
             self.slam = vendor.ready_client(vendor.ServiceClient(SLAM, SLAM_VERSION, SLAM_APIS), SLAM, self.link)
         if options.get("stand_up"):
-            vendor.check(self.loco.SetFsmId(self.link.start_fsm), self.link.loco_service, "Start")
+            code = self.loco.SetFsmId(self.link.start_fsm)
+            if code != 0:
+                raise vendor.StartupError(f"Start (FSM {self.link.start_fsm}) failed: vendor code {code} "
+                                          f"({vendor.describe(code)}) from {self.link.loco_service} "
+                                          f"on {self.link.where()}")
         if options.get("map"):
             self._relocalise_at_start(str(options["map"]))
 
@@ -378,16 +383,24 @@ class UnitreeLoco(LocoBackend):
         with self._lock:
             return self._pose if self._pose is not None else self._start_pose
 
-    def fresh_pose(self, what: str) -> Pose:
-        """The odometry pose, or a stop and an error when it is missing or stale."""
+    def odometry_problem(self, what: str) -> str | None:
+        """Why the odometry cannot be trusted to ``what`` (missing or stale), or None."""
         with self._lock:
             pose, age = self._pose, time.monotonic() - self._pose_wall
-        if pose is None or age > self.odom_timeout:
+        if pose is None:
+            return (f"cannot {what}: no odometry on {ODOM_TOPIC} yet (relocalise first: "
+                    "stuart-bt map relocalise, or the loco 'map' option)")
+        if age > self.odom_timeout:
+            return f"cannot {what}: the odometry on {ODOM_TOPIC} is {age:.1f} s old"
+        return None
+
+    def fresh_pose(self, what: str) -> Pose:
+        """The odometry pose, or a stop and an error when it is missing or stale."""
+        problem = self.odometry_problem(what)
+        if problem is not None:
             self.halt()
-            heard = "never arrived (relocalise first)" if pose is None else f"is {age:.1f} s old"
-            raise DaemonError("backend_error", f"cannot {what}: the odometry on {ODOM_TOPIC} {heard}; stopped",
-                              data={"pose": self.pose().to_dict()})
-        return pose
+            raise DaemonError("backend_error", f"{problem}; stopped", data={"pose": self.pose().to_dict()})
+        return self.pose()
 
     def send_velocity(self, vx: float, vy: float, omega: float) -> None:
         vendor.check(self.loco.SetVelocity(round(vx, 4), round(vy, 4), round(omega, 4), self.command_duration),
@@ -410,6 +423,9 @@ class UnitreeLoco(LocoBackend):
 
     def _map_walk(self, goal: NavigateGoal) -> MapWalk:
         assert isinstance(goal.target, MapGoal)
+        problem = self.odometry_problem("navigate")
+        if problem is not None:
+            raise DaemonError("backend_error", problem, data={"pose": self.pose().to_dict()})
         start = self.pose()
         gx, gy, gyaw = goal_pose(start, goal.target)
         route = [(start.x, start.y), (gx, gy)]

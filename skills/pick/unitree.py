@@ -27,7 +27,7 @@ from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.skills import vendor
-from stuart_bt.skills.arm_stream import ArmStreamer, Targets
+from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
 from stuart_bt.skills.gesture.keyframes import hand
 from stuart_bt.world import Pose
 
@@ -44,7 +44,7 @@ class ArmPhases(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "UnitreePick", phases: list[Phase], finish: Any, gate: bool,
+    def __init__(self, backend: UnitreePick, phases: list[Phase], finish: Any, gate: bool,
                  planned: dict[str, Any], release_at_end: bool) -> None:
         self.backend = backend
         self.phases = phases
@@ -106,7 +106,7 @@ class UnitreePick(DryPick):
         return {**super().commands(), "confirm": self._confirm_command}
 
     def neutral(self) -> Targets:
-        return {j: desc.NEUTRAL[j] for side in desc.SIDES for j in desc.arm_joints(side)}
+        return dict(ARM_REST)
 
     # -- planning ---------------------------------------------------------------------------------
     def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:

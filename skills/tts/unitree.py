@@ -16,11 +16,11 @@ English voice), ``piper_model`` (a local piper voice file; piper needs it), ``vo
 
 from __future__ import annotations
 
+from pathlib import Path
 import shutil
 import tempfile
-import wave
-from pathlib import Path
 from typing import Any
+import wave
 
 import numpy as np
 from unitree_sdk2py.g1.audio.g1_audio_client import AudioClient
@@ -58,7 +58,7 @@ def pcm16k(path: Path) -> bytes:
 class RobotUtterance(Utterance):
     """The robot's own TTS: one TtsMaker request, then wait the measured duration."""
 
-    def __init__(self, backend: "UnitreeTts", text: str, seconds: float) -> None:
+    def __init__(self, backend: UnitreeTts, text: str, seconds: float) -> None:
         super().__init__(backend, text)
         self.duration = seconds
         self.tts = backend
@@ -71,7 +71,7 @@ class RobotUtterance(Utterance):
 class StreamedUtterance(Utterance):
     """Local speech sent to the speaker in chunks, each a little before it is needed."""
 
-    def __init__(self, backend: "UnitreeTts", text: str, pcm: bytes) -> None:
+    def __init__(self, backend: UnitreeTts, text: str, pcm: bytes) -> None:
         super().__init__(backend, text)
         self.tts = backend
         self.chunk_bytes = int(backend.chunk_seconds * STREAM_RATE) * 2
@@ -115,7 +115,8 @@ class UnitreeTts(DryTts):
         self.options = options
         self.link = vendor.link_from(options, "tts", OWN_OPTIONS)
         where = "tts unitree options"
-        self.engine = vendor.startup_option(lambda: a.string(options, "engine", where, default="robot", choices=ENGINES))
+        self.engine = vendor.startup_option(
+            lambda: a.string(options, "engine", where, default="robot", choices=ENGINES))
         self.speaker = int(vendor.startup_option(lambda: a.number(options, "speaker", where, default=1)))
         self.chunk_seconds = vendor.startup_option(lambda: a.number(options, "chunk_seconds", where, default=3.0,
                                                                     minimum=0.5))

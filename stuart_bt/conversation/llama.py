@@ -98,6 +98,15 @@ class LlamaConversation:
         text, self.last_timing = collect_timed(self.stream(messages))
         return text
 
+    def propose(self, messages: list[dict[str, str]], schema: dict[str, Any]) -> str:
+        """JSON held to ``schema`` by llama.cpp's grammar-constrained sampling (greedy), for task
+        proposals (stuart_bt.mission.proposals): whatever the model wants, the shape is right."""
+        with self._lock:
+            out = self._llm.create_chat_completion(messages=messages, max_tokens=160, temperature=0.0,
+                                                   seed=self.seed, response_format={"type": "json_object",
+                                                                                    "schema": schema})
+            return str(out["choices"][0]["message"]["content"] or "")
+
     def reply(self, text: str, context: dict[str, Any]) -> Reply:
         """One turn: prompt, generate, strip tags (keep gestures if social), remember."""
         with self._lock:

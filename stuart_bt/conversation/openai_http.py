@@ -58,9 +58,9 @@ class OpenAIConversation:
         self._lock = threading.Lock()
 
     # -- HTTP -----------------------------------------------------------------------------------------
-    def _request(self, messages: list[dict[str, str]], stream: bool) -> Any:
+    def _request(self, messages: list[dict[str, str]], stream: bool, **extra: Any) -> Any:
         body: dict[str, Any] = {"model": self.model, "messages": messages, "max_tokens": self.max_tokens,
-                                "temperature": self.temperature, "stream": stream}
+                                "temperature": self.temperature, "stream": stream, **extra}
         if self.seed is not None:
             body["seed"] = self.seed
         headers = {"Content-Type": "application/json", "Accept": "text/event-stream" if stream else "application/json"}
@@ -94,8 +94,15 @@ class OpenAIConversation:
         except (OSError, TimeoutError) as exc:  # a connection that dies mid-stream
             raise ServerError(f"LLM server {self.base_url} stream broke: {exc}") from exc
 
-    def _whole(self, messages: list[dict[str, str]]) -> str:
-        with self._request(messages, stream=False) as response:
+    def propose(self, messages: list[dict[str, str]], schema: dict[str, Any]) -> str:
+        """JSON held to ``schema`` by the server (``response_format`` with a schema: llama.cpp's
+        server, vLLM and Ollama honour it), greedy; raises :class:`ServerError`."""
+        with self._lock:
+            return self._whole(messages, response_format={"type": "json_object", "schema": schema},
+                               temperature=0.0, max_tokens=160)
+
+    def _whole(self, messages: list[dict[str, str]], **extra: Any) -> str:
+        with self._request(messages, stream=False, **extra) as response:
             data = json.load(response)
         return (data["choices"][0]["message"].get("content") or "").strip()
 

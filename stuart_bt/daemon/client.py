@@ -159,6 +159,12 @@ class DaemonClient:
         self.flush()
         return request
 
+    def keep_alive(self) -> None:
+        """Tell the daemon the framework still runs (its watchdog); no reply, no event."""
+        if self._write_fd is not None:
+            self._out += p.encode(p.alive())
+            self.flush()
+
     def cancel(self, request: Request) -> Request | None:
         """Ask the daemon to cancel ``request`` (it ends with ``cancelled``); None if already over."""
         if request.finished or request.id not in self._pending:

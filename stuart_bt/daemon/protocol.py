@@ -21,6 +21,7 @@ PROGRESS = "progress"
 DONE = "done"
 ERROR = "error"
 HEARTBEAT = "heartbeat"
+ALIVE = "alive"  # framework -> daemon keep-alive line: {"type": "alive"} (no id, no reply)
 LOG = "log"
 REPLY_TYPES = (ACCEPTED, PROGRESS, DONE, ERROR)
 
@@ -138,6 +139,15 @@ def error(
     if data:
         message["data"] = data
     return message
+
+
+def alive() -> dict[str, Any]:
+    return {"type": ALIVE}
+
+
+def is_alive(message: dict[str, Any]) -> bool:
+    """The framework's keep-alive: it only proves the framework still runs (the daemon's watchdog)."""
+    return message.get("type") == ALIVE and "id" not in message
 
 
 def heartbeat(seq: int, t: float, state: dict[str, Any]) -> dict[str, Any]:

@@ -75,11 +75,15 @@ class Supervisor:
         restart_backoff: tuple[float, float] = (0.2, 5.0),
         *,
         heartbeat_period: float = 0.1,
+        watchdog: float = 0.0,
         programs: Mapping[str, Sequence[str]] | None = None,
         run_dir: str | Path | None = None,
     ) -> None:
         """``programs`` replaces ``python -m stuart_bt.skills.<family>`` for some families (tests,
-        out-of-tree daemons); ``run_dir`` receives ``<family>.stderr.log`` (default: a temp dir)."""
+        out-of-tree daemons); ``run_dir`` receives ``<family>.stderr.log`` (default: a temp dir).
+        ``watchdog`` (wall seconds, 0: off): each daemon stops running motion when :meth:`poll`
+        has sent it nothing for that long (poll sends a keep-alive every quarter of it), so a
+        frozen framework leaves a stopped robot; poll at the tick rate, as the executor does."""
         self.backend = backend
         self.clock = clock
         self.events = events
@@ -88,6 +92,8 @@ class Supervisor:
         self.heartbeat_timeout = heartbeat_timeout
         self.restart_backoff = restart_backoff
         self.heartbeat_period = heartbeat_period
+        self.watchdog = watchdog
+        self._next_keep_alive = 0.0
         self.programs = dict(programs or {})
         self.run_dir = Path(run_dir) if run_dir else Path(tempfile.mkdtemp(prefix="stuart_bt-daemons-"))
         self.run_dir.mkdir(parents=True, exist_ok=True)
@@ -207,7 +213,8 @@ class Supervisor:
     def _argv(self, family: str) -> list[str]:
         program = self.programs.get(family) or [sys.executable, "-m", f"stuart_bt.skills.{family}"]
         return [*program, "--backend", self.backend, "--clock", self.clock.spec(),
-                "--options", json.dumps(self.options.get(family, {})), "--heartbeat", str(self.heartbeat_period)]
+                "--options", json.dumps(self.options.get(family, {})), "--heartbeat", str(self.heartbeat_period),
+                *(["--watchdog", str(self.watchdog)] if self.watchdog > 0 else [])]
 
     def _spawn(self, d: _Daemon) -> None:
         argv = self._argv(d.family)
@@ -262,6 +269,11 @@ class Supervisor:
         for key, _ in ready:
             key.data.client.poll()
         now = time.monotonic()
+        if self.watchdog > 0 and now >= self._next_keep_alive:
+            self._next_keep_alive = now + self.watchdog / 4
+            for d in self._daemons.values():
+                if d.phase == "ready":
+                    d.client.keep_alive()
         for d in self._daemons.values():
             self._check(d, now)
         self._zombies = [z for z in self._zombies if z.poll() is None]

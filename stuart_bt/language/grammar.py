@@ -88,16 +88,21 @@ NP_BLOCK = frozenset({"sleep", "bed", "hell", "heaven", "pieces", "waste", "war"
                       "break", "rest", "nap", "seat", "look", "photo", "picture", "photograph", "selfie", "shower",
                       "bath", "walk", "hand", "minute", "second", "moment", "sec", "chance", "call", "try", "guess",
                       "hint", "clue", "idea", "deep breath", "breath", "breather", "left", "right", "way",
-                      "step", "steps", "turn", "turns", "care", "part", "place", "note", "notice", "time",
+                      "step", "steps", "turn", "turns", "care", "part", "place", "note", "notice", "time", "pace",
                       "lead", "lesson", "chill pill", "joke", "pill", "hike", "stroll", "spin"})
 NP_STOP = BOUNDARY | frozenset({
     "to", "from", "on", "in", "at", "into", "onto", "inside", "near", "next", "by", "with", "for", "off", "of",
-    "please", "now", "quickly", "slowly", "carefully", "immediately", "again", "too", "first", "thanks", "thank",
-    "up", "down", "over", "there", "here", "behind", "under", "beside", "between", "below", "above", "around",
+    "please", "now", "quickly", "quick", "slowly", "carefully", "immediately", "again", "too", "first", "thanks",
+    "thank", "up", "down", "over", "there", "here", "behind", "under", "beside", "between", "below", "above", "around",
     "across", "along", "towards", "toward", "through", "until", "till", "unless", "if", "while", "so",
     "because", "as", "without", "asap", "ok", "gently", "instead", "also", "real", "fast", "safely",
     "straight", "right", "yourself", "which", "who", "where", "whose", "thats", "will", "would", "can",
     "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
+    "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
+    "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
+    "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
+    "you",  # a new clause: "... the kitchen you need a map"
+    "together", "alone",
 })
 NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", "item"})  # "go to marker kitchen"
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
@@ -106,7 +111,7 @@ TRAILING = frozenset({"please", "now", "quickly", "slowly", "carefully", "immedi
                       "right", "away", "straight", "real", "quick", "for", "me", "us", "as", "well", "if", "can",
                       "could", "will", "would", "possible", "buddy", "mate", "pal", "robot", "friend", "then",
                       "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over", "shall",
-                      "we", "yeah", "alright"})
+                      "we", "yeah", "alright", "later", "soon", "today", "tonight", "tomorrow", "sometime"})
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
                 "which", "whose", "whom", "whatever", "wat"})
@@ -171,6 +176,8 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("see", "if", "you", "can"), ("see", "if", "you", "could"), ("check", "if", "you", "can"),
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
+    ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
+    ("please", "to"), ("mind",), ("you", "mind"),
 }, key=lambda p: (-len(p), p)))
 _POLITE_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
 for _p in POLITE:
@@ -210,7 +217,8 @@ DIRECTIONS: dict[str, tuple[int, int]] = {
 }
 ROTATIONS: dict[str, int] = {"clockwise": -1, "anticlockwise": 1, "counterclockwise": 1, "cw": -1, "ccw": 1,
                              "left": 1, "right": -1, "leftward": 1, "rightward": -1, "leftwards": 1,
-                             "rightwards": -1, "port": 1, "starboard": -1}
+                             "rightwards": -1, "port": 1, "starboard": -1,
+                             "rite": -1, "write": -1, "wright": -1}  # a recogniser's "right", after a turn verb only
 VAGUE = frozenset({("a", "bit"), ("a", "little"), ("a", "little", "bit"), ("slightly",), ("a", "tad"),
                    ("a", "touch"), ("a", "tiny", "bit"), ("just", "a", "bit"), ("just", "a", "little"),
                    ("little", "bit"), ("bit",), ("a", "smidge"), ("somewhat",), ("a", "few", "degrees"),
@@ -229,7 +237,8 @@ TURN_FILLER = frozenset({"by", "to", "the", "your", "my", "through", "about", "r
 AROUND = frozenset({"around", "round", "about", "aroud", "arround"})
 TO_WORDS = frozenset({"to", "towards", "toward", "into", "unto", "til", "till", "onto", "inside", "for"})
 HOME = frozenset({"home", "base"})
-CHOICES = frozenset({"number", "card", "one", "side", "colour", "color", "winner", "fight", "lock", "team", "name",
+CHOICES = frozenset({"number", "card", "one", "side", "colour", "color", "winner", "fight", "fights", "battle",
+                     "battles", "lock", "team", "name",
                      "song", "movie", "film", "game", "date", "time", "option", "answer", "favourite", "favorite",
                      "quarrel", "nose", "brain", "brains", "spot", "moment", "word", "letter", "something"})
 # what an object is taken "from" that is furniture, not a place to go ("the cup from the table")
@@ -278,7 +287,7 @@ MOTION_VERBS = frozenset({"go", "move", "walk", "head", "drive", "travel", "proc
                           "sidestep", "wander", "stroll", "march", "visit", "approach", "reach", "enter", "step",
                           "back", "get", "retreat", "creep", "shuffle", "inch", "hop", "make", "scurry", "dash",
                           "sprint", "zoom", "trot", "amble", "journey", "relocate", "continue", "goto", "gp", "nudge", "edge",
-                          "budge", "crawl", "glide", "push", "ease", "wheel"})
+                          "budge", "crawl", "glide", "push", "ease", "wheel", "pop", "nip"})
 TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "face", "revolve", "veer", "swing"})
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
                         "carry", "get", "hand", "pass", "give", "snatch", "obtain", "gather", "seize", "acquire",
@@ -549,20 +558,45 @@ def _object(s: _State, words: list[str]) -> str | None:
         return None  # "take it easy", "bring it on"
     if text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no"):
         return None
+    if all(word_value(w) is not None for w in words):
+        return None  # "take five": a number is no object
     return text
 
 
 def _place(s: _State, words: list[str]) -> str | None:
-    """The spoken place of a navigation, with "there" meaning the last place named."""
+    """The spoken place of a navigation, with "there" meaning the last place named; a plural
+    before a number is singular ("stations one, two and three": "station one", ...)."""
     if not words:
         return None
+    if len(words) >= 2 and words[-2].endswith("s") and not words[-2].endswith("ss") and word_value(
+            words[-1]) is not None:
+        words = [*words[:-2], words[-2][:-1], words[-1]]
     text = " ".join(words)
     if text in ("there", "that place", "it", "that"):
         return s.last_place or s.topic or None
     if (text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here"
-            or _no_noun(words)):
-        return None
+            or _no_noun(words) or words[-1] in OBJECT_PRONOUNS):
+        return None  # ... and "(sorry) to bother you": a verb and its object, no place
     return text
+
+
+def _numbered(place: str) -> tuple[str, float] | None:
+    """ "station three" -> ("station", 3.0): a place named by a number, or ``None``."""
+    head, _, last = place.rpartition(" ")
+    value = word_value(last) if head else None
+    return (head, value) if value is not None else None
+
+
+def _go(s: _State, target: str | None, e: int) -> Result:
+    """navigate_to_marker ``target`` (ending at ``e``); a numbered range is one per number:
+    "visit stations 1 to 3", "station one through three" -> station 1, station 2, station 3."""
+    if target is None:
+        return None
+    num = _numbered(target) if s.at(e) in ("to", "through", "thru") else None
+    last = word_value(s.at(e + 1)) if num else None
+    if num and last is not None and num[1] == int(num[1]) and last == int(last) and num[1] < last <= num[1] + 10:
+        return [(NAVIGATE, f"{num[0]} {k}", 0.0, 0.0, 0.0) for k in range(int(num[1]), int(last) + 1)], e + 2
+    return [(NAVIGATE, target, 0.0, 0.0, 0.0)], e
 
 
 # -- movement and turning ----------------------------------------------------------------------------
@@ -628,8 +662,13 @@ _NUMBER_STARTS = frozenset({
     "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
     "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
     "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
-    "couple", "few", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
+    "couple", "few", "several", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
 })
+
+
+MAX_BARE_SIDESTEP_M = 10.0  # "left 90" with no unit: more than the lab is wide, so an angle
+STEP_WORDS = frozenset(w for w, (dim, factor) in UNITS.items() if dim == LENGTH and factor == STEP_M)
+_FRACTION_STARTS = frozenset({"a", "an", "half", "quarter", "quarters", "one", "three", "two"})  # "three quarters"
 
 
 def _move(s: _State, i: int, verb: str, default_back: bool = False) -> Result:
@@ -694,7 +733,14 @@ def _turn_terms(s: _State, i: int, verb: str) -> Result:
                 t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) and (q := read_quantity(toks, j)) is not None:
             if q.dimension == LENGTH:
                 return None
-            angle = q.value if q.dimension == ANGLE else math.radians(q.value)
+            if q.dimension == ANGLE:
+                angle = q.value
+            elif q.value < 1 and toks[j] in _FRACTION_STARTS:
+                angle = q.value * 2 * math.pi  # "turn a quarter to the right", "turn half way round"
+                if angle == math.pi and s.at(q.end) in ("way", "turn") and s.at(q.end + 1) in AROUND:
+                    return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], q.end + 2  # "half way round": around
+            else:
+                angle = math.radians(q.value)  # a bare number in a turn is degrees
             j = q.end
         elif t in TURN_FILLER and j + 1 < n and toks[j + 1] not in BOUNDARY:
             j += 1
@@ -731,6 +777,8 @@ def _motion(s: _State, i: int) -> Result:
         j += 1
     if s.at(j) in ("me", "us", "them", "him", "her") and s.at(j + 1) in TO_WORDS:
         j += 1  # "walk me to the kitchen"
+    elif s.at(j) == "with" and s.at(j + 1) in ("me", "us", "them", "him", "her") and s.at(j + 2) in TO_WORDS:
+        j += 2  # "come with me to the kitchen": company, not a place
     t = s.at(j)
     if verb == "back" and t in ("up", "off", "away", "out"):
         j += 1
@@ -753,6 +801,13 @@ def _motion(s: _State, i: int) -> Result:
         return _do(s, i)
     if verb == "get" and t not in TO_WORDS and t not in HOME and t != "back":
         return _pick(s, i)
+    if t in ("2", "two", "too") and s.at(j + 1) in ("the", "your", "my", "our", "station"):
+        t = "to"  # "go two the kitchen": a recogniser's "to" (a number needs a unit or a direction)
+    if t == "for" and (q := read_quantity(s.toks, j + 1)) is not None and q.dimension == LENGTH:
+        return _move(s, j, verb)  # "go straight for two metres": how far, not where
+    if s.at(j + 1) in ("the", "your", "my", "our") and (t == "in" and verb in ("go", "come", "head", "move") or (
+            t == "until" and verb in ("go", "come", "walk", "run", "head", "move", "drive"))):
+        t = "to"  # "go in the kitchen", "walk until the entrance": said for "into", "up to"
     if t in TO_WORDS and t != "for" or (t == "for" and verb in ("head", "make", "go")):
         k = j + 1
         k2 = k
@@ -764,10 +819,7 @@ def _motion(s: _State, i: int) -> Result:
         if k < n and toks[k] in ALL_VERBS and toks[k] not in ("back", "face", "stand", "hand", "end", "break"):
             return _clause(s, k)  # "go to find the cup"
         words, e = _np(s, k)
-        target = _place(s, words)
-        if target is None:
-            return None
-        return [(NAVIGATE, target, 0.0, 0.0, 0.0)], e
+        return _go(s, _place(s, words), e)
     if t in HOME:
         return [(NAVIGATE, t, 0.0, 0.0, 0.0)], j + 1
     if t == "there" and (s.last_place or s.topic) and verb not in ("move", "step", "back"):
@@ -776,8 +828,7 @@ def _motion(s: _State, i: int) -> Result:
         return None  # "come back", "come here": towards the speaker, whom the grammar cannot place
     if verb in ("visit", "approach", "reach", "enter", "navigate", "goto"):
         words, e = _np(s, j)
-        target = _place(s, words)
-        return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e) if target else None
+        return _go(s, _place(s, words), e)
     if t in ALL_VERBS and t not in DIRECTIONS and verb in ("go", "come", "run", "hurry", "rush") and t not in (
             "stand", "back"):
         return _clause(s, j)  # "go get the bottle", "come wave"
@@ -797,11 +848,14 @@ def _guide(s: _State, i: int) -> Result:
     j = i + 1
     while s.at(j) in OBJECT_PRONOUNS or s.at(j) in ("the", "way", "back", "over", "our", "visitors", "guests"):
         j += 1
+    if s.at(j) not in TO_WORDS:  # "escort our new guest to ...": whoever is guided, then where
+        _, j = _np(s, j)
+        while s.at(j) in ("the", "way", "back", "over"):
+            j += 1
     if s.at(j) not in TO_WORDS:
         return None
     words, e = _np(s, j + 1)
-    target = _place(s, words)
-    return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e) if target else None
+    return _go(s, _place(s, words), e)
 
 
 def _turn(s: _State, i: int) -> Result:
@@ -833,14 +887,18 @@ def _pick(s: _State, i: int) -> Result:
         if t in ("going", "go", "moving", "move", "up", "down", "out", "ready", "closer", "away", "lost", "along",
                  "on", "off", "in", "inside", "started", "here", "over", "there", "a", "an", "rid", "it", "real",
                  "better", "well", "some", "started", "dressed", "to", "back", "home"):
-            if t in ("to", "back", "home", "over") or t == "back":
-                return _motion(s, i)
+            if t in ("to", "back", "home") or (t == "over" and s.at(j + 1) in TO_WORDS):
+                return _motion(s, i)  # (_motion hands "get" without a destination back here)
+            if t == "over":
+                return None  # "get over it"
             if t not in ("a", "an", "it", "some"):
                 return None
     elif verb in ("give", "hand", "pass"):
         k = j
         if s.at(k) in OBJECT_PRONOUNS and s.at(k) not in ("them", "you", "yourself"):
             k += 1
+        elif s.at(k) == "over" and verb in ("hand", "pass"):
+            j = k = k + 1  # "hand over the screwdriver"
         k2 = k + 1 if s.at(k) in DETERMINERS else k
         g = s.phrase_at(k2, _GESTURE_BY_FIRST)
         if g is not None:
@@ -851,10 +909,17 @@ def _pick(s: _State, i: int) -> Result:
             "me", "us", "him", "her") and j + 1 < n and toks[j + 1] not in BOUNDARY and toks[j + 1] not in (
             "to", "here", "over", "back"):
         j += 1
+    elif s.at(j) in ("to", "for") and s.at(j + 1) in ("me", "us") and s.at(j + 2) in DETERMINERS:
+        j += 2  # "bring to me the bottle": who it is for, said first
     words, e = _np(s, j)
     target = _object(s, words)
-    if target is None:
-        return None
+    if target is None or (verb == "take" and words[-1] in NP_BLOCK):
+        return None  # "take a short break", "take a deep breath": idioms whatever the adjective
+    targets = [target]
+    more, e_more = _shared_list(s, e)
+    if more:  # "fetch the cup and the bottle from the kitchen": the source is both objects'
+        targets += more
+        e = e_more
     if verb == "pick" and s.at(e) in ("up", "out"):
         e += 1
     if s.at(e) == "up" and verb in ("pick", "lift", "take", "scoop", "grab"):
@@ -877,7 +942,7 @@ def _pick(s: _State, i: int) -> Result:
             e = e2
             k = e2
     if not (words[0] in ("it", "them", "that", "this") and s.last_action == PICK and target == s.last_object):
-        out.append((PICK, target, 0.0, 0.0, 0.0))  # "grab the apple and bring it to ...": picked already
+        out += [(PICK, t, 0.0, 0.0, 0.0) for t in targets]  # "grab the apple and bring it to ...": picked already
     if s.at(k) in ("to", "into", "over", "towards", "toward") and verb in ("bring", "take", "carry", "deliver",
                                                                            "fetch", "get", "move"):
         k2 = k + 1 + (1 if s.at(k) == "over" and s.at(k + 1) == "to" else 0)
@@ -889,6 +954,29 @@ def _pick(s: _State, i: int) -> Result:
                 out.append((NAVIGATE, place, 0.0, 0.0, 0.0))
         e = e2
     return out, e
+
+
+def _shared_list(s: _State, e: int) -> tuple[list[str], int]:
+    """More objects after the first ("the cup and the bottle", "the cup, the book and the
+    apple") when a source or destination follows the last one, which then applies to all:
+    (the other objects, end). Without one the list is left to the ellipsis rule."""
+    more: list[str] = []
+    k = e
+    while s.at(k) in (",", "and"):
+        k += 1
+        if s.at(k) == "and":
+            k += 1
+        if s.at(k) not in DETERMINERS:
+            return [], e
+        words, k2 = _np(s, k)
+        obj = _object(s, words) if words else None
+        if obj is None:
+            return [], e
+        more.append(obj)
+        k = k2
+    if more and (s.at(k) == "from" or s.at(k) in ("to", "into") and s.at(k + 1) in DETERMINERS | {"station"}):
+        return more, k
+    return [], e
 
 
 def _find(s: _State, i: int, verb: str = "") -> Result:
@@ -914,7 +1002,7 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
             if s.at(e) != "for":  # "search the kitchen": a place to search; "check the kitchen": vague
                 return ([(FIND, area, 0.0, 0.0, 0.0)], e) if verb != "check" else None
             j = e + 1
-        elif verb == "track" and s.at(j) == "down":
+        elif verb in ("track", "hunt") and s.at(j) == "down":
             j += 1
         elif verb in ("look", "hunt", "seek", "check"):
             return None
@@ -925,6 +1013,8 @@ def _find(s: _State, i: int, verb: str = "") -> Result:
             return _way_to(s, j + 2)
         if s.at(j) in ("me", "us") and j + 1 < n and toks[j + 1] not in BOUNDARY and toks[j + 1] not in TRAILING:
             j += 1
+        elif s.at(j) in ("to", "for") and s.at(j + 1) in ("me", "us") and s.at(j + 2) in DETERMINERS:
+            j += 2  # "find for me the cup"
     elif verb in ("locate", "spot", "detect"):
         pass
     words, e = _np(s, j)
@@ -985,10 +1075,13 @@ def _stop(s: _State, i: int) -> Result:
     verb = toks[i]
     j = i + 1
     nxt = s.at(j)
-    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
+    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right", "at", "in",
+                                       "near", "beside", "inside"):
         return None
     if verb == "never" and nxt != "mind":
         return None
+    if verb in ("stop", "halt") and nxt in ("me", "us", "him", "her", "them", "everyone", "everybody", "people"):
+        return None  # "stop me if you've heard this one": someone else is stopped
     if verb == "forget" and nxt not in ("it", "that", "about", "everything", "this"):
         return None
     if verb == "cut" and nxt not in ("it", "that", "out"):
@@ -1009,17 +1102,32 @@ def _stop(s: _State, i: int) -> Result:
         return None
     if verb == "quit" and nxt not in ("it", "that", "moving", "move", "now", "", "please"):
         return None
-    if verb in ("wait", "stay") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(j + 1) in (
-            "the", "your", "my", "our", "station"):
+    if verb in ("wait", "stay", "stand") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
+            j + 1) in ("the", "your", "my", "our", "station"):
         words, e = _np(s, j + 1)  # "wait at the entrance": go there, then stay
         place = _place(s, words)
         if place is not None and words[-1] not in SURFACES:
             return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], _skip_rest(s, e)
+    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
+        return None  # "stand in line"
     while j < n and toks[j] not in BOUNDARY:
         if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
             break
         j += 1
     return [(STOP, "", 0.0, 0.0, 0.0)], j
+
+
+VISIT_VERBS = frozenset({"stop", "swing", "drop", "come", "pop", "go", "pass", "nip", "call"})
+
+
+def _visit_by(s: _State, i: int) -> Result:
+    """ "stop by the kitchen", "swing by the workbench", "drop by station 3": a visit
+    (navigate_to_marker). Only with a place after "by": "stand by" and "stop by 5" are not."""
+    if s.at(i + 1) != "by" or s.at(i + 2) not in ("the", "your", "my", "our", "station"):
+        return None
+    words, e = _np(s, i + 2)
+    place = _place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], e) if place and words[-1] not in SURFACES else None
 
 
 def _skip_gesture_tail(s: _State, j: int) -> int:
@@ -1188,9 +1296,15 @@ def _do(s: _State, i: int) -> Result:
                 2 if s.at(k + 1) == "turn" else 1)
         if verb in ("make", "do") and (t == "way" or (t == "your" and s.at(k + 1) == "way")):
             return _way_to(s, k + (1 if t == "way" else 2))
-        if verb in ("take", "make", "do") and (t in ("step", "steps") or s.at(k + 1) in ("step", "steps") or s.at(
-                k + 2) in ("step", "steps")):
-            return _move(s, j, "step")
+        if verb in ("take", "make", "do") and (t in STEP_WORDS or s.at(k + 1) in STEP_WORDS or s.at(
+                k + 2) in STEP_WORDS):
+            got = _move(s, j, "step")
+            at = next(m for m in range(k, k + 3) if toks[m] in STEP_WORDS)
+            if got is None and toks[at] in ("step", "pace"):  # "take a small step to the left": one step that way
+                got = _move(s, at + 1, "step")
+                if got is None and _done(s, at + 1):  # "take a small step": forward, like "take a step"
+                    got = [(MOVE, "", s.defaults.step_m, 0.0, 0.0)], at + 1
+            return got
         # "make a quarter turn to the left", "do a full turn", "do a 360"
         k0 = j
         while k0 < n and toks[k0] in ("a", "an", "the"):
@@ -1199,6 +1313,8 @@ def _do(s: _State, i: int) -> Result:
                 break
             k0 += 1
         got = _turn_terms(s, k0, verb)
+        if got is not None and verb == "take" and not any(w in ROTATIONS or w in UNITS for w in toks[k0:got[1]]):
+            got = None  # "take five": a break; "take a left", "take a quarter turn" say how they turn
         if got is not None and (got[0][0][0] != TURN_AROUND or s.at(k0) in AROUND):
             return got
         if verb in ("do", "make") and s.at(k) == "spin":
@@ -1282,11 +1398,15 @@ def _polite(s: _State, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in (("next",), ("like",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
-            break  # "like" is a filler only before a verb: "could you like go to the kitchen"
+        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS:
+            break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
         i += len(p)
     return i
 
+
+# polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
+_BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
+                                 ("you", "mind")})
 
 REQUESTS: tuple[tuple[str, ...], ...] = tuple(
     (m, who, *please, v) for m in ("can", "could", "may") for who in ("i", "we") for please in ((), ("please",))
@@ -1385,6 +1505,8 @@ def _clause(s: _State, i: int) -> Result:
     t = toks[i]
     if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY):
         return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
+    if t in VISIT_VERBS and s.at(i + 1) == "by" and (got := _visit_by(s, i)) is not None:
+        return got
     sp = s.phrase_at(i, _STOP_BY_FIRST) if t in _STOP_BY_FIRST else None
     if sp is not None and (len(sp) > 1 or t in ("stop", "halt", "freeze", "enough", "whoa", "woah")):
         if t in ("stop", "halt", "freeze"):
@@ -1432,9 +1554,11 @@ def _verbless(s: _State, i: int) -> Result:
         if s.at(k) not in DIRECTIONS:
             words, j = _np(s, i + 1)
             target = _place(s, words)
-            if target is not None and _done(s, j):
+            if target is not None and _done(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
                 return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
             return None
+    if last == NAVIGATE and word_value(t) is not None and (num := _numbered(s.last_place)) and _done(s, i + 1):
+        return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
     if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in _NUMBER_STARTS or (
             t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
         if s.first or last in (MOVE, TURN, TURN_AROUND):
@@ -1443,7 +1567,8 @@ def _verbless(s: _State, i: int) -> Result:
                 direction, amount, dim, vague, j = _motion_terms(s, i)
                 if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
                     return None  # "right." alone is an acknowledgement as often as a command
-                turnish = dim == ANGLE or (amount is None and direction in (LEFT, RIGHT))
+                turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
+                    dim == "" and amount > MAX_BARE_SIDESTEP_M)))  # "left 90": degrees, never 90 m
             got = _turn_terms(s, i, "turn") if turnish else _move(s, i, "move")
             if got is not None and _done(s, got[1]):
                 return got
@@ -1451,8 +1576,8 @@ def _verbless(s: _State, i: int) -> Result:
     if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
             not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
         words, j = _np(s, i)
-        if not words or not _done(s, j):
-            return None
+        if not words or not _done(s, j) or any(w in DETERMINERS for w in words[1:]):
+            return None  # "... and close the door": a verb and its object, not a second place
         target = _place(s, words) if last == NAVIGATE else _object(s, words)
         if target is None:
             return None
@@ -1470,6 +1595,18 @@ def _topic(s: _State, i: int) -> bool:
         return False
     s.topic = " ".join(words)
     return True
+
+
+# what a speaker says before correcting the clause just said: "go to the kitchen, no, the
+# bathroom", "pick up the cup, sorry, I mean the bottle", "turn left, no wait, right"
+CORRECTIONS: tuple[tuple[str, ...], ...] = (
+    ("no",), ("no", "wait"), ("wait", "no"), ("sorry",), ("i", "mean"), ("i", "meant"), ("oops",),
+    ("or", "rather"), ("rather",), ("make", "that"), ("make", "it"), ("scratch", "that"), ("correction",),
+    ("my", "mistake"), ("my", "bad"), ("not", "that"), ("i", "said"),
+)
+_CORRECTION_BY_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {}
+for _c in sorted(CORRECTIONS, key=lambda c: (-len(c), c)):
+    _CORRECTION_BY_FIRST[_c[0]] = _CORRECTION_BY_FIRST.get(_c[0], ()) + (_c,)
 
 
 def _connector(s: _State, i: int) -> tuple[str, int] | None:
@@ -1499,6 +1636,8 @@ def _skip_rest(s: _State, j: int) -> int:
         if t in CONDITIONS:
             condition = True
         elif not condition:
+            if t in _CORRECTION_BY_FIRST and s.phrase_at(j, _CORRECTION_BY_FIRST) is not None:
+                break  # "go to the kitchen no the bathroom"
             if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
@@ -1537,11 +1676,19 @@ class Grammar:
         i = 0
         dead = False  # the sentence opened as a question or statement
         reorder_at: int | None = None  # "X but first Y": Y's intents go before X's
+        correct_at: int | None = None  # "X, no, Y": Y's intents replace X's
+        clause_end = -1  # where the last clause ended: "X after you Y" has no connector between
+        hold = False  # "before you Y, X": Y's intents wait ...
+        held: list[TaskIntent] = []  # ... here until X's are in
         while i < n:
             t = toks[i]
             if t in HARD_STOPS:
                 dead = False
                 i += 1
+                continue
+            if out and not dead and t in _CORRECTION_BY_FIRST and (c := s.phrase_at(i, _CORRECTION_BY_FIRST)):
+                correct_at = len(out) - _last_clause_len(out)  # "go to the kitchen, no, the bathroom"
+                i += len(c)
                 continue
             con = _connector(s, i)
             if con is not None:
@@ -1552,10 +1699,19 @@ class Grammar:
                 elif kind == "reorder" and out:
                     reorder_at = len(out) - _last_clause_len(out)
                 continue
+            if dead and toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
+                    t in ("stop", "halt", "freeze") and _done(s, i + 1))):
+                dead = False  # "I lost my keys, can you help me find them?", "is enough, stop": said to the robot
             if dead:
                 i += 1
                 continue
             subordinate = False
+            attached = bool(out) and i == clause_end
+            if t == "before" and i + 1 < n and (toks[i + 1] in ("you", "u") or toks[i + 1] in ALL_VERBS):
+                i += 2 if toks[i + 1] in ("you", "u") else 1
+                hold = not attached  # "before you go, wave": the wave first; "wave before you go": in order
+                if i >= n:
+                    break
             if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
                     "you", "youve", "youre", "u"):
                 i += 2
@@ -1568,6 +1724,8 @@ class Grammar:
                 perfect = toks[i + 1] == "youve" or t == "once"
                 i += 2 if toks[i + 1] in ("you", "youve", "youre", "u") else 1
                 subordinate = True
+                if t == "after" and attached:  # "go to the kitchen after you wave": the wave first
+                    reorder_at = len(out) - _last_clause_len(out)
                 if i < n and toks[i] == "have" and toks[i - 1] == "you":
                     i += 1  # "once you have picked up ..."
                     perfect = True
@@ -1582,6 +1740,8 @@ class Grammar:
                 got = _clause(s, i)
                 s.subordinate = False
             if got is None:
+                correct_at = reorder_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
+                hold = False
                 if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
                     i = _skip_rest(s, i + 1)
                     s.first = False
@@ -1595,6 +1755,16 @@ class Grammar:
                 continue
             specs, j = got
             j = max(j, i + 1)
+            if not specs:  # "grab the cup and hand it to me": the handing over adds nothing
+                s.first = False
+                i = clause_end = _skip_rest(s, j)
+                continue
+            if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
+                dead = True
+                correct_at = reorder_at = None
+                hold = False
+                i = j
+                continue
             if subordinate and out and [(it.action, it.target) for it in out[-len(specs):]] == [
                     (a, tg) for a, tg, *_ in specs]:
                 s.first = False
@@ -1603,11 +1773,19 @@ class Grammar:
             a, b = tokens.span(start, min(j, n) - 1)
             raw = text[a:b]
             made = [TaskIntent(a, tg, x, y, yaw, raw) for a, tg, x, y, yaw in specs]
-            if reorder_at is not None:
+            if hold:
+                held, hold = made, False
+            elif correct_at is not None:
+                out[correct_at:] = made
+                correct_at = None
+            elif reorder_at is not None:
                 out[reorder_at:reorder_at] = made
                 reorder_at = None
             else:
                 out.extend(made)
+            if held and made is not held:
+                out.extend(held)
+                held = []
             for a, tg, *_ in specs:
                 if a in (PICK, FIND) and tg not in ("me", "it"):
                     s.last_object = tg
@@ -1615,8 +1793,8 @@ class Grammar:
                     s.last_place = tg
             s.last_action = specs[-1][0]
             s.first = False
-            i = _skip_rest(s, j)
-        return _dedupe_stops(out)
+            i = clause_end = _skip_rest(s, j)
+        return _dedupe_stops(out + held)
 
 
 def _arrival(s: _State, i: int) -> Result:

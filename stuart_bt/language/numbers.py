@@ -33,7 +33,7 @@ ORDINALS: dict[str, int] = {
 }
 # Words recognisers write for a number; only read as one right before a plural unit.
 SOUNDS_LIKE: dict[str, float] = {"to": 2.0, "too": 2.0, "for": 4.0, "won": 1.0, "ate": 8.0}
-VAGUE: dict[str, float] = {"couple": 2.0, "few": 3.0, "pair": 2.0}
+VAGUE: dict[str, float] = {"couple": 2.0, "few": 3.0, "pair": 2.0, "several": 3.0}
 
 STEP_M = 0.5  # one step of the G1 as a distance ("take two steps back")
 
@@ -79,6 +79,8 @@ def _digits(tok: str) -> float | None:
 
 def word_value(tok: str) -> float | None:
     """The value of one number token ("7", "1.5", "seven", "forty"), or ``None``."""
+    if not tok:
+        return None  # past the end of the tokens
     v = _digits(tok)
     if v is not None:
         return v
@@ -222,15 +224,16 @@ def read_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
     return value, j
 
 
-def _pi(toks: Sequence[str], i: int) -> tuple[float, int] | None:
-    """Angles in radians said with pi: "pi", "two pi", "pi over two", "pi by 4", "half pi"."""
+def _pi(toks: Sequence[str], i: int, number: tuple[float, int] | None) -> tuple[float, int] | None:
+    """Angles in radians said with pi: "pi", "two pi", "pi over two", "pi by 4", "half pi".
+    ``number`` is what :func:`read_number` read at ``i`` (read once: quantities are most of a
+    command's parsing time)."""
     n = len(toks)
     factor, j = 1.0, i
     if j < n and toks[j] != "pi":
-        got = read_number(toks, j)
-        if got is None or got[1] >= n or toks[got[1]] != "pi":
+        if number is None or number[1] >= n or toks[number[1]] != "pi":
             return None
-        factor, j = got
+        factor, j = number
     if j >= n or toks[j] != "pi":
         return None
     j += 1
@@ -245,6 +248,22 @@ def _pi(toks: Sequence[str], i: int) -> tuple[float, int] | None:
     return factor * math.pi, j
 
 
+def _centimetres_after(toks: Sequence[str], j: int, metres: float) -> tuple[float, int]:
+    """After "N metre(s)" at ``j``: centimetres said as a second number ("one metre fifty", "a
+    metre and 20 centimetres"): (metres in all, next index); unchanged when none follows."""
+    n = len(toks)
+    if j >= n:
+        return metres, j
+    rest = read_number(toks, j + 1 if toks[j] == "and" else j)
+    if rest is not None and 1 <= rest[0] < 100 and rest[0] == int(rest[0]):
+        k = rest[1]
+        if k < n and toks[k] in UNITS and UNITS[toks[k]] == (LENGTH, 0.01):
+            return metres + rest[0] * 0.01, k + 1
+        if (k >= n or toks[k] not in UNITS) and toks[j] != "and":
+            return metres + rest[0] * 0.01, k
+    return metres, j
+
+
 def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
     """A number with an optional unit: "2 m", "two metres", "a metre and a half", "half a metre",
     "a quarter of a metre", "fifty centimetres", "ninety degrees", "a quarter turn", "a full turn",
@@ -256,10 +275,10 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
     t = toks[i]
     j = i
     value: float
-    got = _pi(toks, i)
-    if got is not None:
-        return Quantity(got[0], ANGLE, got[1])
     got = read_number(toks, i)
+    pi = _pi(toks, i, got)
+    if pi is not None:
+        return Quantity(pi[0], ANGLE, pi[1])
     if got is None and t in SOUNDS_LIKE and i + 1 < n and toks[i + 1] in UNITS and toks[i + 1].endswith("s"):
         got = SOUNDS_LIKE[t], i + 1  # "move forward to meters": a recogniser's "two"
     if got is None:
@@ -273,6 +292,8 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
             frac = _fraction_after_and(toks, j)  # "a metre and a half"
             if frac is not None:
                 value, j = factor * (1 + frac[0]), frac[1]
+            elif dim == LENGTH and factor == 1.0:
+                value, j = _centimetres_after(toks, j, value)  # "a metre fifty"
             return Quantity(value, dim, j)
         return None
     value, j = got
@@ -290,14 +311,8 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
         frac = _fraction_after_and(toks, j)  # "two metres and a half"
         if frac is not None and value == int(value):
             total, j = (value + frac[0]) * factor, frac[1]
-        elif dim == LENGTH and factor == 1.0 and j < n:  # "one metre fifty (centimetres)"
-            rest = read_number(toks, j + 1 if toks[j] == "and" else j)
-            if rest is not None and 1 <= rest[0] < 100 and rest[0] == int(rest[0]):
-                k = rest[1]
-                if k < n and toks[k] in UNITS and UNITS[toks[k]] == (LENGTH, 0.01):
-                    total, j = total + rest[0] * 0.01, k + 1
-                elif (k >= n or toks[k] not in UNITS) and toks[j] != "and":
-                    total, j = total + rest[0] * 0.01, k
+        elif dim == LENGTH and factor == 1.0:
+            total, j = _centimetres_after(toks, j, total)  # "one metre fifty (centimetres)"
         return Quantity(total, dim, j)
     return Quantity(value, "", got[1])  # a bare number: the caller knows its unit
 

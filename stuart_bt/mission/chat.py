@@ -276,7 +276,8 @@ def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO 
     stdin, out = stdin or sys.stdin, out or sys.stdout
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start,
                              require_wake=not args.no_wake, max_repairs=args.max_repairs,
-                             conversation=args.llm, conversation_options=llm_options(args))
+                             conversation=args.llm, conversation_options=llm_options(args),
+                             propose_tasks=args.propose)
     try:
         chat = Chat(options, out)
     except (ValueError, RuntimeError) as e:  # bad options, a missing model file

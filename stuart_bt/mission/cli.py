@@ -50,7 +50,8 @@ def cmd_mission(args: argparse.Namespace) -> int:
     later = sorted(zip(args.then, args.at + [0.0] * (len(args.then) - len(args.at))), key=lambda p: p[1])
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, report=args.report,
                              log=args.log, require_wake=not args.no_wake, max_repairs=args.max_repairs,
-                             conversation=args.llm, conversation_options=llm_options(args))
+                             conversation=args.llm, conversation_options=llm_options(args),
+                             propose_tasks=args.propose)
     try:
         mx = MissionExecutor(options)
     except (ValueError, RuntimeError) as e:  # bad options, a missing model file
@@ -95,6 +96,9 @@ def add_llm_arguments(p: argparse.ArgumentParser) -> None:
                         "OpenAI-compatible server)")
     p.add_argument("--llm-url", metavar="URL", help="openai: the server's API root, e.g. http://127.0.0.1:8080/v1")
     p.add_argument("--llm-model", metavar="NAME", help="llama: GGUF path; openai: model name")
+    p.add_argument("--propose", action="store_true",
+                   help="llama/openai: for a request the grammar misses, the model proposes domain tasks "
+                        "(JSON-schema constrained); the robot asks and runs them only after a yes")
 
 
 def llm_options(args: argparse.Namespace) -> dict[str, Any]:

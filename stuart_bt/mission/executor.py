@@ -66,6 +66,7 @@ class MissionOptions:
     seed: int = 0
     conversation: str = "none"  # none | llama | openai (stuart_bt.conversation.make_conversation)
     conversation_options: dict[str, Any] = field(default_factory=dict)  # e.g. {"base_url": ..., "seed": 0}
+    propose_tasks: bool = False  # a request the grammar misses may get a model's task proposal, run after a yes
 
 
 @dataclass(eq=False)
@@ -138,6 +139,7 @@ class MissionExecutor:
         self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
         self._pending_replies = 0
         self._asides: deque[str] = deque()  # replies to say while a mission runs, between its own speech
+        self._proposal: tuple[str, list[TaskIntent]] | None = None  # (request, intents) awaiting a yes
 
     # -- life cycle ---------------------------------------------------------------------------------
     def start(self) -> Self:
@@ -214,6 +216,8 @@ class MissionExecutor:
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
                             intents=[i.to_dict() for i in command.intents],
                             parsed=[i.to_dict() for i in command.parse.intents])
+        if self._answer_proposal(command):
+            return command
         if command.kind == IGNORE:
             return command
         if command.kind == STOP:
@@ -302,6 +306,8 @@ class MissionExecutor:
 
         def answer() -> None:
             try:
+                if self._propose(text):
+                    return
                 reply = self.conversation.reply(text, context)
                 self.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
                 with self._cond:
@@ -315,6 +321,73 @@ class MissionExecutor:
                     self._cond.notify_all()
 
         self._talk.submit(answer)
+
+    # -- task proposals (stuart_bt.mission.proposals) --------------------------------------------------
+    def _propose(self, text: str) -> bool:
+        """On the reply thread: a request the grammar missed may get a model's proposal. Only one
+        that resolves and plans-checks is offered ("Shall I ...?"); it waits for a yes."""
+        from . import proposals
+
+        if not self.options.propose_tasks or proposals.is_question(text) or \
+                not isinstance(self.conversation, proposals.Proposer):
+            return False
+        from ..gestures import LIBRARY
+
+        prompt = proposals.messages(text, sorted(self.lab.markers), sorted(self.lab.objects), sorted(LIBRARY))
+        try:
+            intents = proposals.parse(self.conversation.propose(prompt, proposals.schema()))
+        except Exception as e:  # noqa: BLE001 - a failing model must leave the plain reply
+            self.events.publish("warning", message=f"task proposal failed: {type(e).__name__}: {e}")
+            return False
+        checked = self._checked(intents or [])
+        if not intents or checked is None:
+            return False
+        question = f"Shall I {proposals.describe(checked)}? Say yes to go ahead."
+        with self._cond:
+            self._proposal = (text, checked)
+            self._queue.appendleft(_Say(question, "proposal"))
+            self._cond.notify_all()
+        self.events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked])
+        return True
+
+    def _checked(self, intents: list[TaskIntent]) -> list[TaskIntent] | None:
+        """The intents with resolved targets, or None when one would not resolve or plan."""
+        out = []
+        for intent in intents:
+            resolution = self.resolver.resolve(intent) if intent.action != "gesture" else None
+            if resolution is not None and not resolution.ok:
+                return None
+            if resolution is not None:
+                intent = TaskIntent(**{**intent.to_dict(), "target": resolution.name})
+            try:
+                self.domain.to_call(intent.to_dict())
+            except TaskArgumentError:
+                return None
+            out.append(intent)
+        return out
+
+    def _answer_proposal(self, command: Command) -> bool:
+        """A yes runs the offered proposal, a no drops it (no wake phrase needed for either: the
+        robot just asked); anything else drops it and is handled as usual."""
+        from .proposals import NO, YES
+
+        with self._cond:
+            pending, self._proposal = self._proposal, None
+        if pending is None:
+            return False
+        text = command.parse.command if command.parse.wake else command.parse.utterance
+        if YES.match(text or ""):
+            self.events.publish("proposal", phase="confirmed", to=pending[0])
+            self._accept(pending[0], pending[1], replace=False)
+            return True
+        if NO.match(text or ""):
+            self.events.publish("proposal", phase="declined", to=pending[0])
+            with self._cond:
+                self._queue.appendleft(_Say("OK, I won't.", "proposal"))
+                self._cond.notify_all()
+            return True
+        self.events.publish("proposal", phase="dropped", to=pending[0])
+        return False
 
     def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> None:
         calls: list[TaskCall] = []

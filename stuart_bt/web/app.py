@@ -13,7 +13,7 @@ Routes (every answer is JSON; a refused request gets ``{"error": "one sentence"}
 | ``POST /api/walk`` ``{x, y, yaw}``, ``/api/goto`` ``{marker}`` | walk to a map pose / a marker |
 | ``GET /api/map``, ``/api/map.png`` | map numbers and picture |
 | ``GET /api/markers``, ``POST /api/markers`` ``{op, name, ...}`` | the marker file (markers.py) |
-| ``GET /api/joints``, ``GET /api/pose``, ``POST /api/pose`` ``{joints}`` | sliders; the sim's arm pose now; a pose to take |
+| ``GET /api/joints``, ``GET/POST /api/pose`` ``{joints}`` | sliders; the sim's arm pose now / to take |
 | ``GET /api/gestures``, ``GET/POST /api/gestures/{name}``, ``POST /api/gestures/{name}/play`` | gesture files |
 """
 
@@ -198,6 +198,15 @@ def create_app(parts: WebParts) -> Starlette:
             return
         await websocket.accept()
         client, hello = hub.connect()
+
+        async def until_closed() -> None:  # a closed tab ends its sender at once, not at the next send
+            try:
+                while (await websocket.receive())["type"] != "websocket.disconnect":
+                    pass
+            finally:
+                client.end()
+
+        watcher = asyncio.create_task(until_closed())
         try:
             await websocket.send_text(hello)
             while True:
@@ -208,6 +217,7 @@ def create_app(parts: WebParts) -> Starlette:
         except (WebSocketDisconnect, RuntimeError):
             pass
         finally:
+            watcher.cancel()
             hub.disconnect(client)
 
     routes = [

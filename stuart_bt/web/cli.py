@@ -33,7 +33,8 @@ def add_serve_command(subparsers: Any) -> argparse.ArgumentParser:
                         "(default 1: real time, to watch; 0: as fast as possible)")
     p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
     p.add_argument("--markers", metavar="FILE", help="marker file the map edits (default: the tree's)")
-    p.add_argument("--gestures", metavar="DIR", default="gestures", help="folder of recorded gestures (default ./gestures)")
+    p.add_argument("--gestures", metavar="DIR", default="gestures",
+                   help="folder of recorded gestures (default ./gestures)")
     p.add_argument("--start", metavar="MARKER", help="marker the robot starts at (default entrance)")
     p.add_argument("--log", metavar="OUT.jsonl", help="write every event as JSON lines (replay it with --replay)")
     p.add_argument("--paused", action="store_true", help="wait for the Run button instead of starting the tree")
@@ -62,9 +63,9 @@ def cmd_serve(args: argparse.Namespace) -> int:
 def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
     import uvicorn
 
+    from ..world import load_markers
     from .app import WebParts, create_app
     from .gestures import GestureFolder
-    from .hub import EventHub
     from .mapfile import MapFile, default_map
     from .markers import MarkerStore
     from .security import Guard
@@ -82,6 +83,8 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
         if control is not None:
             print(f"starting {what} ...", file=sys.stderr, flush=True)
             control.start()
+            if parts.markers is not None:  # the markers the map shows are the ones "go to" knows
+                control.set_markers(load_markers(parts.markers.path))
         print(f"serving {what} at {address}  (Ctrl-C stops)", flush=True)
         if guard.token:
             print(f"token: {guard.token}  (needed on every request: this address is not loopback-only)", flush=True)

@@ -14,10 +14,9 @@ from __future__ import annotations
 
 import queue
 import threading
-import time
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..events import Event, EventStream
 from ..runner import RunOptions, Session
@@ -109,6 +108,8 @@ class TreeControl:
             raise ControlError("nothing to continue: the tree was not stopped")
         root = self.spec.root
         rest = [c for c in root.children if c.path not in self._finished_steps] if root.kind == "sequence" else None
+        if rest == []:
+            raise ControlError("nothing left to continue: every step of the tree succeeded")
         spec = self.spec if rest is None else replace(self.spec, root=replace(root, children=rest))
         self._submit(Job(spec, "continue", main=True))
 
@@ -271,13 +272,3 @@ def _one_leaf(kind: str, name: str, params: dict[str, Any]) -> TreeSpec:
     """A tree of one leaf (the page's own small jobs), named so the timeline shows what it was."""
     where = Location("<web>", 1, 1)
     return TreeSpec(NodeSpec(kind, name, name, where, params), f"<web:{name}>")
-
-
-def wait_until(predicate: Callable[[], bool], timeout: float) -> bool:
-    """Poll ``predicate`` (wall time) until true or ``timeout`` seconds pass."""
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if predicate():
-            return True
-        time.sleep(0.02)
-    return predicate()

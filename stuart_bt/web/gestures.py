@@ -35,7 +35,8 @@ def joint_table() -> list[dict[str, Any]]:
     limits = joint_limits()
     rows = []
     for name, (lo, hi) in limits.items():
-        group = next(g for g, prefix, hand in reversed(GROUPS) if name.startswith(prefix) and (hand == ("_hand_" in name)))
+        group = next(g for g, prefix, hand in reversed(GROUPS)
+                     if name.startswith(prefix) and hand == ("_hand_" in name))
         rows.append({"name": name, "group": group, "lower": lo, "upper": hi,
                      "neutral": float(NEUTRAL.get(name, min(max(0.0, lo), hi)))})
     return rows

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import threading
 from collections import deque
 from typing import Any, Iterable
 
@@ -49,6 +48,13 @@ class Client:
         while not self.queue.empty():
             self.queue.get_nowait()
 
+    def end(self, last: str | None = None) -> None:
+        """Make the socket's sender stop (after ``last``, if given), however full the queue is."""
+        self._drain()
+        if last is not None:
+            self.queue.put_nowait(last)
+        self.queue.put_nowait(None)
+
 
 class EventHub:
     """Keeps the snapshot and history; pushes batches of events to the connected clients."""
@@ -63,8 +69,7 @@ class EventHub:
             self.replay = True
             self._fold(event)
         self.clients: set[Client] = set()
-        self._pending: list[Event] = []
-        self._lock = threading.Lock()
+        self._pending: deque[Event] = deque()
         self._pump: asyncio.Task[None] | None = None
         self._unsubscribe = events.subscribe(self._on_event) if events is not None else None
 
@@ -85,14 +90,13 @@ class EventHub:
             self._pump.cancel()
             self._pump = None
         for client in list(self.clients):
-            client.offer(json.dumps({"type": "bye"}))
+            client.end(json.dumps({"type": "bye"}))
 
     # -- publishing thread: as little as possible (the executor is waiting) -------------------------
     def _on_event(self, event: Event) -> None:
         if event.kind == "blackboard":  # its value may be changed in place later: keep it as it is now
             event = Event(event.t, event.kind, event.path, _frozen(event.data), event.wall)
-        with self._lock:
-            self._pending.append(event)
+        self._pending.append(event)  # deque.append is atomic: no lock on the executor's thread
 
     # -- event loop ---------------------------------------------------------------------------------
     def _fold(self, event: Event) -> dict[str, Any]:
@@ -102,8 +106,8 @@ class EventHub:
         return item
 
     def _flush(self) -> None:
-        with self._lock:
-            events, self._pending = self._pending, []
+        pending = self._pending
+        events = [pending.popleft() for _ in range(len(pending))]  # what arrives meanwhile waits
         batch = [self._fold(e) for e in events]
         if not batch or not self.clients:
             return

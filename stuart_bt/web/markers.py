@@ -61,7 +61,6 @@ class MarkerStore:
         self.path = Path(path)
         self.bounds = bounds
         self._lock = threading.Lock()
-        self.listeners: list[Callable[[dict[str, Any]], None]] = []  # called with the new document
 
     def load(self) -> dict[str, Any]:
         """The document plus its ``version``."""
@@ -106,10 +105,7 @@ class MarkerStore:
                 else:
                     del markers[name]
             self._write({"frame": doc["frame"], "markers": markers})
-            new_doc = self._read()
-        for listener in self.listeners:
-            listener(new_doc)
-        return new_doc
+            return self._read()
 
     def _check_expected(self, name: str, current: dict[str, Any], expect: Any, doc: dict[str, Any]) -> None:
         if expect is None:

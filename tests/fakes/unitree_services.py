@@ -14,6 +14,7 @@ topic) for the test to assert on. stdin takes JSON lines that script faults::
     {"fault": {"service": "arm", "api": 7106, "code": 7400, "times": 1}}   # answer with an error
     {"fault": {"service": "slam_operate", "api": 1102, "silent": true}}    # no answer: a timeout
     {"arrive": false}                                                      # navigation gives up
+    {"ping": 7}                                                            # answered with a "pong" record
 """
 
 from __future__ import annotations
@@ -216,8 +217,11 @@ def main(argv: list[str] | None = None) -> int:
     for service in filter(None, args.silent.split(",")):
         robot.faults.append({"service": service, "silent": True, "times": 10**9})
     ChannelFactoryInitialize(args.domain, args.interface)
-    for name in VERSIONS:
-        FakeService(name, robot)._Start(False)
+    starting = [threading.Thread(target=FakeService(name, robot)._Start, args=(False,)) for name in VERSIONS]
+    for thread in starting:  # each server start waits half a second: together, not one after another
+        thread.start()
+    for thread in starting:
+        thread.join()
     odom = ChannelPublisher("rt/unitree/slam_relocation/odom", Odometry_)
     odom.Init()
     key_info = ChannelPublisher("rt/slam_key_info", String_)
@@ -260,6 +264,8 @@ def _control(stream: Any, robot: Robot) -> None:
             order = json.loads(line)
         except ValueError:
             continue
+        if "ping" in order:  # every request the fake answered before this is already recorded
+            robot.record(kind="pong", n=order["ping"])
         with robot.lock:
             if "fault" in order:
                 robot.faults.append(dict(order["fault"]))

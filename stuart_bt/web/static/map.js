@@ -24,6 +24,7 @@ export class MapView {
     this.version = null;
     this.path = [];
     this.pose = null;
+    this.objects = new Map(); // id -> {x, y, label}: the last spatial memory, put-downs, minus picks
     this.view = { k: 1, x: 0, y: 0 };
     this.gesture = null; // pointer interaction in progress
     this.wire();
@@ -60,6 +61,7 @@ export class MapView {
   reset() {
     this.path = [];
     this.pose = null;
+    this.objects.clear();
     this.onEvents(this.store.events);
   }
 
@@ -70,13 +72,27 @@ export class MapView {
         this.pose = { x: event.x, y: event.y, yaw: event.yaw };
         this.path.push([event.x, event.y]);
         moved = true;
+      } else if (event.kind === "memory" && Array.isArray(event.objects)) {
+        // perception's spatial memory (stuart_bt.memory/1): what the robot believes is where now
+        this.objects = new Map(event.objects.map((o) => [o.id || o.label, { x: o.x, y: o.y, label: o.label,
+          confidence: o.confidence }]));
+        moved = true;
+      } else if (event.kind === "leaf" && event.outcome === "SUCCESS" && event.skill === "release" && event.result) {
+        const label = event.result.object;  // put down: known again where it was put
+        if (label && event.result.position) {
+          this.objects.set(label, { x: event.result.position.x, y: event.result.position.y, label });
+          moved = true;
+        }
+      } else if (event.kind === "leaf" && event.outcome === "SUCCESS" && event.skill === "pick" && event.result) {
+        for (const [key, o] of this.objects) if (o.label === event.result.object) this.objects.delete(key);
+        moved = true;
       }
     }
     if (this.path.length > 20000) this.path = this.path.slice(-20000);
-    if (moved) {
+    if (moved && this.pose) {
       this.poseBox.textContent = `x ${this.pose.x.toFixed(2)} m, y ${this.pose.y.toFixed(2)} m, yaw ${(this.pose.yaw * DEG).toFixed(0)}°`;
-      this.draw();
     }
+    if (moved) this.draw();
   }
 
   // -- geometry -------------------------------------------------------------------------------
@@ -133,6 +149,14 @@ export class MapView {
     if (this.gesture && this.gesture.kind !== "move" && this.gesture.kind !== "pan") {
       const g = this.gesture;
       this.arrow(g.x, g.y, g.yaw ?? 0, g.kind === "walk" ? "#2e9e5b" : "#d97706", g.kind === "walk" ? "walk here" : "new marker");
+    }
+    for (const o of this.objects.values()) {
+      const [sx, sy] = this.toScreen(o.x, o.y);
+      ctx.fillStyle = "#7c3aed";
+      ctx.globalAlpha = o.confidence === undefined ? 1 : Math.max(0.3, o.confidence);
+      ctx.fillRect(sx - 4, sy - 4, 8, 8);
+      ctx.globalAlpha = 1;
+      ctx.fillText(o.label, sx + 6, sy + 4);
     }
     if (this.pose) this.robot(this.pose);
   }
