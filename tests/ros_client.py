@@ -10,7 +10,8 @@ one JSON object per line; everything it receives is printed on stdout, one JSON 
 - ``{"quit": true}`` or end of input: exit.
 
 Printed: ``{"ready": true}`` once the bridge's publishers are seen; ``{"topic", "data", "t"}`` per
-String received; ``{"topic", "x", "y", "yaw", "frame", "t"}`` per pose.
+String received; ``{"topic", "x", "y", "yaw", "frame", "t"}`` per pose; ``{"topic", "markers", "t"}``
+per MarkerArray.
 Usage: ``python tests/ros_client.py [NAMESPACE]`` (ROS_DOMAIN_ID and the discovery range from the
 environment).
 """
@@ -30,8 +31,9 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Int32, String
+from visualization_msgs.msg import MarkerArray
 
-STRING_TOPICS = ("llm/task_intent", "llm/response", "bt/events", "bt/status")
+STRING_TOPICS = ("llm/task_intent", "llm/response", "bt/events", "bt/status", "spatial_memory/summary")
 INPUT_TOPICS = ("audio_msg", "llm/input", "stuart/mission", "pick_target")
 DISCOVERY_WAIT = 20.0  # s
 
@@ -48,11 +50,12 @@ def main() -> int:
             sys.stdout.flush()
 
     qos = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+    subscriptions = {}
     for topic in STRING_TOPICS:
         sub_qos = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL) if topic == "bt/status" else qos
         full = node.resolve_topic_name(topic)
-        node.create_subscription(String, topic, lambda m, full=full: emit(
+        subscriptions[topic] = node.create_subscription(String, topic, lambda m, full=full: emit(
             {"topic": full, "data": m.data, "t": time.monotonic()}), sub_qos)
     pose_topic = node.resolve_topic_name("robot_pose")
 
@@ -62,6 +65,11 @@ def main() -> int:
               "yaw": 2 * math.atan2(q.z, q.w), "frame": m.header.frame_id, "t": time.monotonic()})
 
     node.create_subscription(PoseStamped, "robot_pose", on_pose, qos)
+    markers_topic = node.resolve_topic_name("spatial_memory/markers")
+    node.create_subscription(MarkerArray, "spatial_memory/markers", lambda m: emit(
+        {"topic": markers_topic, "markers": [{"action": k.action, "type": k.type, "text": k.text, "frame":
+                                              k.header.frame_id, "x": k.pose.position.x, "y": k.pose.position.y}
+                                             for k in m.markers], "t": time.monotonic()}), qos)
     publishers = {topic: node.create_publisher(String, topic, qos) for topic in INPUT_TOPICS}
     executor = SingleThreadedExecutor()
     executor.add_node(node)
@@ -75,8 +83,8 @@ def main() -> int:
     spinner.start()
 
     deadline = time.monotonic() + DISCOVERY_WAIT
-    while time.monotonic() < deadline and not all(
-            node.count_publishers(node.resolve_topic_name(t)) for t in ("llm/task_intent", "llm/response")):
+    while time.monotonic() < deadline and not all(  # matched, not only seen in the graph
+            subscriptions[t].get_publisher_count() for t in ("llm/task_intent", "llm/response", "bt/events")):
         time.sleep(0.02)
     emit({"ready": True})
     for line in sys.stdin:

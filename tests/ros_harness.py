@@ -37,7 +37,7 @@ def ros_env(domain_id: int | None = None) -> dict[str, str]:
     return env
 
 
-class _Lines:
+class Lines:
     """A process's stdout lines, read on a thread, kept in order."""
 
     def __init__(self, stream: Any) -> None:
@@ -75,8 +75,8 @@ class BridgeProcess:
         self.proc = subprocess.Popen([sys.executable, "-m", "stuart_bt.cli", "ros", *args], env=env or ros_env(),
                                      stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                      text=True)
-        self.out = _Lines(self.proc.stdout)
-        self.err = _Lines(self.proc.stderr)
+        self.out = Lines(self.proc.stdout)
+        self.err = Lines(self.proc.stderr)
 
     def up(self) -> str:
         line = self.out.wait_for(lambda x: x.startswith("ros bridge: node"), START_WAIT)
@@ -112,8 +112,8 @@ class RosClient:
         self.proc = subprocess.Popen([sys.executable, str(CLIENT), namespace], env=env or ros_env(),
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                      text=True)
-        self.out = _Lines(self.proc.stdout)
-        self.err = _Lines(self.proc.stderr)
+        self.out = Lines(self.proc.stdout)
+        self.err = Lines(self.proc.stderr)
         if self.out.wait_for(lambda x: '"ready"' in x, START_WAIT) is None:
             raise RuntimeError("the ROS client did not start")
 

@@ -46,16 +46,15 @@ def test_pose_events_become_map_poses_and_every_event_is_a_log_line():
     assert json.loads(out[-1].payload)["kind"] == "pose"
 
 
-def test_a_memory_event_from_perception_gives_a_summary_and_markers_of_the_well_formed_objects():
-    event = Event(6.0, "memory", data={"objects": [
-        {"label": "bottle", "x": 3.9, "y": 1.6, "z": 0.8, "confidence": 0.91},
-        {"label": "cup", "x": "far"},  # no position: left out
-        {"x": 1.0, "y": 2.0}]})  # no label: left out
-    summary, markers = translated(event)
-    assert summary.topic == t.MEMORY_SUMMARY and markers.topic == t.MEMORY_MARKERS
-    assert json.loads(summary.payload) == {"t": 6.0, "objects": [
-        {"label": "bottle", "x": 3.9, "y": 1.6, "z": 0.8, "confidence": 0.91}]}
-    assert [o["label"] for o in markers.payload] == ["bottle"]
+def test_a_memory_event_from_perception_gives_its_summary_and_markers_of_the_well_formed_objects():
+    summary = {"format": "stuart_bt.memory/1", "t": 6.0, "frame": "map", "objects": [
+        {"id": "bottle_1", "label": "bottle", "x": 3.9, "y": 1.6, "z": 0.8, "confidence": 0.91, "sightings": 3},
+        {"id": "cup_1", "label": "cup", "x": "far"},  # no position: no marker
+        {"x": 1.0, "y": 2.0}]}  # no label: no marker
+    text, markers = translated(Event(6.0, "memory", "mission/find", summary))
+    assert text.topic == t.MEMORY_SUMMARY and json.loads(text.payload) == summary  # the summary as perception made it
+    assert markers.topic == t.MEMORY_MARKERS
+    assert [(o["id"], o["label"], o["x"], o["y"], o["z"]) for o in markers.payload] == [("bottle_1", "bottle", 3.9, 1.6, 0.8)]
     assert translated(Event(7.0, "leaf", "mission/go", {"outcome": "SUCCESS"})) == []  # no memory, no summary
 
 

@@ -17,6 +17,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from ..cli import _daemon_options
 from ..mission.cli import add_llm_arguments, llm_options
 
 EXIT_OK, EXIT_FAILED = 0, 1
@@ -37,6 +38,8 @@ def add_ros_command(subparsers: Any) -> argparse.ArgumentParser:
                    help="most /bt/status messages per second (default 10)")
     p.add_argument("--confirm-picks", action="store_true",
                    help="hold every pick until 'confirm' arrives on /pick_target (the original safety step)")
+    p.add_argument("--daemon-options", metavar="FILE",
+                   help="JSON or YAML: {family: {option: value}} for the daemons (as for stuart-bt run)")
     p.add_argument("--log", type=Path, metavar="OUT.jsonl", help="also write every event, one JSON object per line")
     add_llm_arguments(p)
     p.set_defaults(func=cmd_ros)
@@ -51,9 +54,12 @@ def cmd_ros(args: argparse.Namespace) -> int:
     from ..mission.executor import MissionExecutor, MissionOptions
     from .node import Bridge  # rclpy loads here, and only in this process
 
+    daemon_options = _daemon_options(args.daemon_options)  # a bad file: one line (UserError), nothing started
+    if args.confirm_picks:
+        daemon_options.setdefault("pick", {})["confirm"] = True
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, log=args.log,
                              conversation=args.llm, conversation_options=llm_options(args),
-                             daemon_options={"pick": {"confirm": True}} if args.confirm_picks else {})
+                             daemon_options=daemon_options)
     stop = threading.Event()
     previous = _handlers(stop)
     try:

@@ -184,10 +184,10 @@ class Bridge:
         clear.header.frame_id = t.MAP_FRAME
         markers = [clear]
         for obj in objects:
-            ident = self._marker_ids.setdefault(obj["label"], len(self._marker_ids))
+            ident = self._marker_ids.setdefault(obj["id"], len(self._marker_ids))  # stable per object
             for kind, offset in ((Marker.SPHERE, 0.0), (Marker.TEXT_VIEW_FACING, 0.15)):
                 m = Marker(ns="spatial_memory", id=2 * ident + (kind == Marker.TEXT_VIEW_FACING), type=kind,
-                           action=Marker.ADD, text=obj["label"] if kind == Marker.TEXT_VIEW_FACING else "")
+                           action=Marker.ADD, text=obj["id"] if kind == Marker.TEXT_VIEW_FACING else "")
                 m.header.frame_id, m.header.stamp = t.MAP_FRAME, stamp
                 m.pose.position.x, m.pose.position.y = float(obj["x"]), float(obj["y"])
                 m.pose.position.z = obj["z"] + offset

@@ -48,8 +48,8 @@ class EventTranslator:
       objects, a leading "stop" included), in the order they were said;
     - ``command`` tts ``say`` -> RESPONSE with the spoken text; when it is a conversation
       ``reply`` that carried gestures, their tags follow it (``"Hello! [high wave]"``);
-    - ``pose`` -> POSE; ``memory`` (perception's spatial memory, when it runs) -> MEMORY_SUMMARY
-      and MEMORY_MARKERS;
+    - ``pose`` -> POSE; ``memory`` (perception's spatial memory summary, after a ``find``) ->
+      MEMORY_SUMMARY (the summary itself) and MEMORY_MARKERS (its well-formed objects);
     - every event -> EVENTS, as its JSON-lines log line.
     """
 
@@ -71,25 +71,25 @@ class EventTranslator:
                 out.append(Outgoing(RESPONSE, " ".join([text, *(f"[{g}]" for g in tags)])))
         elif event.kind == "pose" and all(isinstance(d.get(k), (int, float)) for k in ("x", "y")):
             out.append(Outgoing(POSE, {"x": float(d["x"]), "y": float(d["y"]), "yaw": float(d.get("yaw") or 0.0)}))
-        elif event.kind == "memory":
-            objects = memory_objects(d)
-            out.append(Outgoing(MEMORY_SUMMARY, json.dumps({"t": round(event.t, 6), "objects": objects},
-                                                            ensure_ascii=False)))
-            out.append(Outgoing(MEMORY_MARKERS, objects))
+        elif event.kind == "memory":  # the stuart_bt.memory/1 summary (docs/perception.md), as it is
+            out.append(Outgoing(MEMORY_SUMMARY, json.dumps(d, ensure_ascii=False, default=str)))
+            out.append(Outgoing(MEMORY_MARKERS, memory_objects(d)))
         out.append(Outgoing(EVENTS, event.to_json()))
         return out
 
 
 def memory_objects(data: dict[str, Any]) -> list[dict[str, Any]]:
-    """The objects of a ``memory`` event that have a label and a map position; the rest of each
-    object's fields (confidence, seen_at, ...) are kept as they are."""
+    """The objects of a ``memory`` event that have a label and a map position, each with an ``id``
+    (the memory's own, e.g. ``bottle_1``, else its label); the rest of each object's fields
+    (confidence, last_seen, ...) are kept as they are."""
     objects = data.get("objects")
     if isinstance(objects, dict):  # {label: {x, y, z, ...}} is accepted too
         objects = [{"label": k, **v} for k, v in objects.items() if isinstance(v, dict)]
     good = []
     for obj in objects if isinstance(objects, list) else []:
         if isinstance(obj, dict) and obj.get("label") and all(isinstance(obj.get(k), (int, float)) for k in ("x", "y")):
-            good.append({**obj, "label": str(obj["label"]), "z": float(obj.get("z") or 0.0)})
+            good.append({**obj, "id": str(obj.get("id") or obj["label"]), "label": str(obj["label"]),
+                         "z": float(obj.get("z") or 0.0)})
     return good
 
 
