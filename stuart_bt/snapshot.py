@@ -30,7 +30,7 @@ import threading
 from typing import Any, Callable, Iterable
 
 from .events import Event, EventStream, _json_default
-from .tree.render import _category
+from .tree.render import category
 from .tree.spec import NodeSpec, TreeSpec
 
 FORMAT = "stuart_bt.snapshot/1"
@@ -38,7 +38,7 @@ FORMAT = "stuart_bt.snapshot/1"
 
 def node_structure(node: NodeSpec) -> dict[str, Any]:
     """A node and its descendants as plain data (the payload of a ``tree`` event)."""
-    return {"path": node.path, "name": node.name, "kind": node.kind, "category": _category(node),
+    return {"path": node.path, "name": node.name, "kind": node.kind, "category": category(node),
             "params": dict(node.params), "children": [node_structure(c) for c in node.children]}
 
 

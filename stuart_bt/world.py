@@ -33,6 +33,13 @@ class Pose:
     def from_dict(cls, d: dict[str, Any]) -> "Pose":
         return cls(float(d.get("x", 0.0)), float(d.get("y", 0.0)), float(d.get("yaw", 0.0)))
 
+    @classmethod
+    def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> "Pose":
+        """The pose with ``heading`` from which the map point (x, y) is ``ahead`` metres in front
+        and ``left`` metres to the left (REP-103): where to stand to reach or look at it."""
+        cos, sin = math.cos(heading), math.sin(heading)
+        return cls(x - ahead * cos + left * sin, y - ahead * sin - left * cos, heading)
+
 
 @dataclass(frozen=True)
 class Marker:

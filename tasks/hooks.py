@@ -14,6 +14,7 @@ from typing import Any
 
 from stuart_bt.gestures import lookup as gesture_lookup
 from stuart_bt.htn.hooks import HookRegistry
+from stuart_bt.world import Pose
 
 HOOKS = HookRegistry()
 PLACE_AHEAD = 0.4  # metres in front of the robot where a released object lands (the dry backend's figure)
@@ -54,10 +55,9 @@ def standoff_pose(state: Any, obj: str, side: float | None = None) -> dict[str, 
     origin = state["pose"] if isinstance(state["pose"], dict) else _nearest_marker(state, ox, oy)
     dx, dy = (ox - origin["x"], oy - origin["y"]) if origin else (1.0, 0.0)
     heading = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-6 else 0.0
-    ahead = float(state["standoff"])
-    side = float(state["reach_side"] if side is None else side)
-    cos, sin = math.cos(heading), math.sin(heading)
-    return {"x": ox - ahead * cos + side * sin, "y": oy - ahead * sin - side * cos, "yaw": heading}
+    left = float(state["reach_side"] if side is None else side)
+    spot = Pose.facing(ox, oy, heading, float(state["standoff"]), left)
+    return {"x": spot.x, "y": spot.y, "yaw": heading}
 
 
 @HOOKS.function

@@ -53,9 +53,8 @@ class ApproachGoal:
 
 def approach_stand(goal: ApproachGoal, heading: float, lateral: float | None = None) -> MapGoal:
     """The base pose with heading ``heading`` that puts the point at (standoff, lateral) in the body frame."""
-    side = goal.lateral if lateral is None else lateral
-    cos, sin = math.cos(heading), math.sin(heading)
-    return MapGoal(goal.x - goal.standoff * cos + side * sin, goal.y - goal.standoff * sin - side * cos, heading)
+    spot = Pose.facing(goal.x, goal.y, heading, goal.standoff, goal.lateral if lateral is None else lateral)
+    return MapGoal(spot.x, spot.y, heading)
 
 
 @dataclass(frozen=True)

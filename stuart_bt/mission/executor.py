@@ -339,8 +339,8 @@ class MissionExecutor:
         except Exception as e:  # noqa: BLE001 - a failing model must leave the plain reply
             self.events.publish("warning", message=f"task proposal failed: {type(e).__name__}: {e}")
             return False
-        checked = self._checked(intents or [])
-        if not intents or checked is None:
+        checked, _, unknown = self._resolve(intents or [])
+        if not checked or unknown:  # a proposal that would not resolve or plan is not offered
             return False
         question = f"Shall I {proposals.describe(checked)}? Say yes to go ahead."
         with self._cond:
@@ -349,22 +349,6 @@ class MissionExecutor:
             self._cond.notify_all()
         self.events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked])
         return True
-
-    def _checked(self, intents: list[TaskIntent]) -> list[TaskIntent] | None:
-        """The intents with resolved targets, or None when one would not resolve or plan."""
-        out = []
-        for intent in intents:
-            resolution = self.resolver.resolve(intent) if intent.action != "gesture" else None
-            if resolution is not None and not resolution.ok:
-                return None
-            if resolution is not None:
-                intent = TaskIntent(**{**intent.to_dict(), "target": resolution.name})
-            try:
-                self.domain.to_call(intent.to_dict())
-            except TaskArgumentError:
-                return None
-            out.append(intent)
-        return out
 
     def _answer_proposal(self, command: Command) -> bool:
         """A yes runs the offered proposal, a no drops it (no wake phrase needed for either: the
@@ -389,7 +373,10 @@ class MissionExecutor:
         self.events.publish("proposal", phase="dropped", to=pending[0])
         return False
 
-    def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> None:
+    def _resolve(self, intents: list[TaskIntent]) -> tuple[list[TaskIntent], list[TaskCall], list[str]]:
+        """Targets resolved against the map, objects and gestures, and each intent made a domain
+        call; the sentences to say for those that would not (an unknown place, a bad argument)."""
+        resolved: list[TaskIntent] = []
         calls: list[TaskCall] = []
         unknown: list[str] = []
         for intent in intents:
@@ -403,6 +390,12 @@ class MissionExecutor:
                 calls.append(self.domain.to_call(intent.to_dict()))
             except TaskArgumentError as e:
                 unknown.append(f"I cannot do that: {e}.")
+                continue
+            resolved.append(intent)
+        return resolved, calls, unknown
+
+    def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> None:
+        _, calls, unknown = self._resolve(intents)
         with self._cond:
             if unknown:  # say so; nothing of this command moves the robot
                 self._queue.appendleft(_Say(" ".join(unknown), "unknown"))

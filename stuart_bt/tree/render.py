@@ -107,7 +107,8 @@ def _text(root: NodeSpec, fmt: str, statuses: dict[str, str]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _category(node: NodeSpec) -> str:
+def category(node: NodeSpec) -> str:
+    """composite, decorator or leaf: how a node is drawn (and named in the tree snapshot)."""
     if node.kind in COMPOSITES:
         return "composite"
     return "decorator" if node.kind in DECORATORS else "leaf"
@@ -126,12 +127,12 @@ def _dot(spec: TreeSpec, statuses: dict[str, str]) -> str:
         '  edge [arrowsize=0.6];',
     ]
     for node in spec.walk():
-        attrs = [f"label={_quote(label(node))}", f"shape={SHAPES[_category(node)]}"]
+        attrs = [f"label={_quote(label(node))}", f"shape={SHAPES[category(node)]}"]
         status = statuses.get(node.path, "").upper()
         if status in FILL:
             attrs.append(f"fillcolor={_quote(FILL[status])}")
             attrs.append(f"tooltip={_quote(f'{node.path}: {status}')}")
-        if _category(node) == "composite":
+        if category(node) == "composite":
             attrs.append('style="filled,rounded"')
         out.append(f"  {_quote(node.path)} [{', '.join(attrs)}];")
         out.extend(f"  {_quote(node.path)} -> {_quote(child.path)};" for child in node.children)

@@ -100,7 +100,7 @@ class EventHub:
     # -- event loop ---------------------------------------------------------------------------------
     def _fold(self, event: Event) -> dict[str, Any]:
         self.snapshot.apply(event)
-        item = wire(event)
+        item = event.to_dict()  # a data key that clashes with the event's own arrives as data_<key>
         self.history.append(item)
         return item
 
@@ -129,12 +129,6 @@ class EventHub:
 
     def disconnect(self, client: Client) -> None:
         self.clients.discard(client)
-
-
-def wire(event: Event) -> dict[str, Any]:
-    """The event as the page receives it: ``Event.to_dict`` (a data key that would hide the
-    event's own kind, like the ``utterance`` event's ``kind``, arrives as ``data_kind``)."""
-    return event.to_dict()
 
 
 def _frozen(data: dict[str, Any]) -> dict[str, Any]:
