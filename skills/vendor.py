@@ -15,7 +15,8 @@ Settings every unitree daemon takes (daemon options, else environment variables,
   "loco", Start FSM 200).
 - ``rpc_timeout`` (0.5 s): how long one request may wait for its answer. Short on purpose: the
   daemon loop is single-threaded and a stuck call must not starve its heartbeats.
-- ``probe_timeout`` (2.0 s): how long the start-up check waits for each service.
+- ``probe_timeout`` (5.0 s): how long the start-up check keeps asking each service (DDS discovery
+  can take seconds).
 """
 
 from __future__ import annotations
@@ -106,7 +107,7 @@ def link_from(options: dict[str, Any], family: str, own: tuple[str, ...]) -> Lin
         firmware = a.string(options, "firmware", where, default=env.get("STUART_UNITREE_FIRMWARE", "sport"),
                             choices=tuple(FIRMWARES))
         return Link(interface, domain, firmware, a.number(options, "rpc_timeout", where, default=0.5, minimum=0.01),
-                    a.number(options, "probe_timeout", where, default=2.0, minimum=0.01))
+                    a.number(options, "probe_timeout", where, default=5.0, minimum=0.01))
     except DaemonError as e:
         raise StartupError(e.reason) from None
 
