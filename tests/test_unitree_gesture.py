@@ -4,7 +4,7 @@ hold / release-99 rule, vendor error codes, and recorded gestures streamed with 
 from __future__ import annotations
 
 import pytest
-from unitree_fake import FakeRobot, robot, unitree_daemon  # robot and unitree_daemon are fixtures
+from unitree_fake import FakeRobot, robot, robot_of_this_file, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
 

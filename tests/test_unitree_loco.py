@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from unitree_fake import FakeRobot, robot, start_failure, unitree_daemon  # robot and unitree_daemon are fixtures
+from unitree_fake import FakeRobot, robot, robot_of_this_file, start_failure, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 from stuart_bt.sim.robot import description as desc
-from unitree_fake import robot, unitree_daemon  # robot and unitree_daemon are fixtures
+from unitree_fake import robot, robot_of_this_file, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
 

@@ -6,13 +6,14 @@ Nothing here imports the vendor SDK: the fake runs in its own process, like the 
 
 from __future__ import annotations
 
-import fcntl
+import collections
 import itertools
 import json
 import os
+import signal
+import socket
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 from collections.abc import Callable
@@ -23,21 +24,24 @@ import pytest
 
 FAKE = Path(__file__).parent / "fakes" / "unitree_services.py"
 DOMAINS = range(160, 230)
+START_TIMEOUT = 60.0  # wall seconds for the fake to answer on its own services (a loaded machine)
 _start = itertools.count((os.getpid() * 7) % len(DOMAINS))
 
 
-def private_domain() -> tuple[int, Any]:
-    """A DDS domain id no other fake on this machine holds (any test run, any checkout): an
-    exclusive lock on a file per domain, held while the fake runs. Returns (domain, lock file)."""
+def private_domain() -> tuple[int, socket.socket]:
+    """A DDS domain id no other fake on this machine holds (any test run, any checkout), and the
+    claim on it: a Unix socket bound to a name in the abstract namespace, which only one process
+    can hold and which vanishes with the process that holds it, so a killed run leaves neither a
+    stale claim nor a file behind. Returns (domain, claim); close the claim to free the domain."""
     first = next(_start)
     for k in range(len(DOMAINS)):
         domain = DOMAINS[(first + k) % len(DOMAINS)]
-        lock = open(Path(tempfile.gettempdir()) / f"stuart_bt-dds-domain-{domain}.lock", "w")
+        claim = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
         try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            return domain, lock
+            claim.bind(f"\0stuart_bt-dds-domain-{domain}")
+            return domain, claim
         except OSError:
-            lock.close()
+            claim.close()
     raise RuntimeError(f"every test DDS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use")
 
 
@@ -53,12 +57,20 @@ class FakeRobot:
         self.records: list[dict[str, Any]] = []
         self._lock = threading.Lock()
         self._pings = 0
+        self.stderr: collections.deque[str] = collections.deque(maxlen=20)  # its last words, for errors
         self.proc = subprocess.Popen(
             [sys.executable, str(FAKE), "--domain", str(self.domain), "--nav-speed", str(nav_speed),
              "--silent", silent],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+            start_new_session=True)  # its own process group: close() ends it and anything it started
         threading.Thread(target=self._read, daemon=True).start()
-        self.wait_for(lambda r: r["kind"] == "ready", timeout=30, what="the fake robot to start")
+        threading.Thread(target=self._read_stderr, daemon=True).start()
+        try:
+            self.wait_for(lambda r: r["kind"] == "ready", timeout=START_TIMEOUT, what="the fake robot to start")
+        except BaseException:
+            self.close()
+            raise AssertionError(f"the fake robot did not start on DDS domain {self.domain} within "
+                                 f"{START_TIMEOUT:g} s; its stderr ends: {list(self.stderr)[-5:]}") from None
 
     @property
     def env(self) -> dict[str, str]:
@@ -74,6 +86,11 @@ class FakeRobot:
             record = json.loads(line)
             with self._lock:
                 self.records.append(record)
+
+    def _read_stderr(self) -> None:
+        assert self.proc.stderr is not None
+        for line in self.proc.stderr:
+            self.stderr.append(line.decode("utf-8", "replace").rstrip())
 
     def sync(self) -> None:
         """Wait until every request the fake answered so far has been read here (its records
@@ -125,13 +142,21 @@ class FakeRobot:
         raise AssertionError(f"timed out waiting for {what}; last records: {self.records[-5:]}")
 
     def close(self) -> None:
+        """End the fake: end of input first (it exits at once), then SIGKILL to its process group."""
         if self.proc.stdin:
-            self.proc.stdin.close()
+            try:
+                self.proc.stdin.close()
+            except OSError:
+                pass
         try:
             self.proc.wait(timeout=5)
         except subprocess.TimeoutExpired:
-            self.proc.kill()
-            self.proc.wait()
+            pass
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)  # the fake, or anything left in its group
+        except (ProcessLookupError, PermissionError):
+            pass
+        self.proc.wait()
         if self._domain_lock is not None:
             self._domain_lock.close()  # the domain is free for the next fake
 
@@ -145,10 +170,28 @@ class FakeRobot:
 # -- fixtures the unitree test files import --------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def robot():
-    """One fake robot per test file (starting one takes a few seconds)."""
-    with FakeRobot(nav_speed=8.0) as fake:
+def robot_of_this_file():
+    """One fake robot per test file (starting one takes a few seconds), or the reason it could
+    not start: kept, so the file reports that once instead of once per test."""
+    try:
+        fake = FakeRobot(nav_speed=8.0)
+    except AssertionError as failure:
+        yield failure
+        return
+    with fake:
         yield fake
+
+
+@pytest.fixture
+def robot(robot_of_this_file, request):
+    """The test file's fake robot. If it failed to start, the first test that asks for it fails
+    with the reason and the others in the file are skipped, naming that failure."""
+    if isinstance(robot_of_this_file, AssertionError):
+        if getattr(request.module, "_fake_robot_failure_reported", False):
+            pytest.skip(f"the fake robot of this file did not start (reported above): {robot_of_this_file}")
+        request.module._fake_robot_failure_reported = True
+        raise robot_of_this_file
+    return robot_of_this_file
 
 
 @pytest.fixture

@@ -20,14 +20,17 @@ topic) for the test to assert on. stdin takes JSON lines that script faults::
 from __future__ import annotations
 
 import argparse
+import ctypes
 import json
 import math
+import os
+import signal
 import sys
 import threading
 import time
 from typing import Any
 
-from unitree_sdk2py.core.channel import ChannelFactoryInitialize, ChannelPublisher, ChannelSubscriber
+from unitree_sdk2py.core.channel import ChannelFactory, ChannelFactoryInitialize, ChannelPublisher, ChannelSubscriber
 from unitree_sdk2py.idl.default import (
     nav_msgs_msg_dds__Odometry_,
     std_msgs_msg_dds__String_,
@@ -36,6 +39,7 @@ from unitree_sdk2py.idl.nav_msgs.msg.dds_ import Odometry_
 from unitree_sdk2py.idl.std_msgs.msg.dds_ import String_
 from unitree_sdk2py.idl.unitree_api.msg.dds_ import Response_, ResponseHeader_, ResponseStatus_
 from unitree_sdk2py.idl.unitree_hg.msg.dds_ import HandCmd_, LowCmd_
+from unitree_sdk2py.rpc.client import Client
 from unitree_sdk2py.rpc.server_base import ServerBase
 from unitree_sdk2py.utils.crc import CRC
 
@@ -44,6 +48,25 @@ HOLDING_ACTIONS = {15, 18, 19, 20, 21, 23, 27}
 KNOWN_ACTIONS = {99, 11, 12, 13, 15, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27}
 ACTION_SECONDS = 0.1  # the fake plays every arm action this long (the daemon waits longer)
 WEIGHT_MOTOR = 29
+PROBE_SECONDS = 20.0  # how long the fake asks its own services before it gives up starting
+PR_SET_PDEATHSIG = 1
+
+# cyclonedds' Python binding creates a topic holding the GIL, and may need the GIL again inside
+# its topic lock (freeing a duplicate type): two threads creating topics at once can deadlock,
+# each holding what the other waits for. Every DDS reader and writer in this process is created
+# under this one lock, so at most one thread is ever inside topic creation.
+_DDS_CREATION = threading.Lock()
+
+
+def _one_creator_at_a_time(create: Any) -> Any:
+    def serialised(*args: Any, **kwargs: Any) -> Any:
+        with _DDS_CREATION:
+            return create(*args, **kwargs)
+    return serialised
+
+
+ChannelFactory.CreateSendChannel = _one_creator_at_a_time(ChannelFactory.CreateSendChannel)
+ChannelFactory.CreateRecvChannel = _one_creator_at_a_time(ChannelFactory.CreateRecvChannel)
 
 
 class Robot:
@@ -65,6 +88,7 @@ class Robot:
         self.faults: list[dict[str, Any]] = []
         self.arrivals: list[bool] = []  # flags to publish on rt/slam_key_info
         self.crc = CRC()
+        self.subscribers: list[Any] = []  # kept alive as long as the fake runs
 
     def record(self, **fields: Any) -> None:
         line = json.dumps({"t": round(time.monotonic(), 4), **fields})
@@ -211,29 +235,82 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--nav-speed", type=float, default=4.0, help="m/s the fake walks a navigation goal")
     parser.add_argument("--silent", default="", help="comma-separated services that never answer")
     args = parser.parse_args(argv)
+    _die_with_parent()
     out = sys.stdout
     sys.stdout = sys.stderr  # the SDK prints; keep stdout for records
     robot = Robot(args.nav_speed, out)
-    for service in filter(None, args.silent.split(",")):
+    silent = set(filter(None, args.silent.split(",")))
+    for service in silent:
         robot.faults.append({"service": service, "silent": True, "times": 10**9})
+    # first, before anything can hang: the end of the test's input ends the fake, whatever it is doing
+    threading.Thread(target=_control, args=(sys.stdin, robot), daemon=True).start()
     ChannelFactoryInitialize(args.domain, args.interface)
-    starting = [threading.Thread(target=FakeService(name, robot)._Start, args=(False,)) for name in VERSIONS]
-    for thread in starting:  # each server start waits half a second: together, not one after another
+    _start_services(robot)
+    odom, key_info = _start_topics(robot)
+    unanswered = _probe(sorted(set(VERSIONS) - silent))
+    if unanswered:
+        print(f"fake robot: services {unanswered} did not answer their own probe within {PROBE_SECONDS:g} s",
+              file=sys.stderr)
+        os._exit(3)
+    robot.record(kind="ready")
+    _run(robot, odom, key_info)
+    return 0
+
+
+def _die_with_parent() -> None:
+    """SIGKILL this fake when the process that started it dies, however it dies."""
+    try:
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() == 1:  # the parent was already gone before the request took effect
+        os._exit(0)
+
+
+def _start_services(robot: Robot) -> None:
+    """Start every service; each start sleeps half a second after creating its channels, so they
+    start on threads side by side (their channel creation is serialised, see _DDS_CREATION)."""
+    _side_by_side(lambda name: FakeService(name, robot)._Start(False), list(VERSIONS))
+
+
+def _side_by_side(start: Any, names: list[str]) -> None:
+    """``start(name)`` for every name, each on its own thread, and wait for all of them."""
+    threads = [threading.Thread(target=start, args=(name,)) for name in names]
+    for thread in threads:
         thread.start()
-    for thread in starting:
+    for thread in threads:
         thread.join()
+
+
+def _start_topics(robot: Robot) -> tuple[ChannelPublisher, ChannelPublisher]:
     odom = ChannelPublisher("rt/unitree/slam_relocation/odom", Odometry_)
     odom.Init()
     key_info = ChannelPublisher("rt/slam_key_info", String_)
     key_info.Init()
-    subscribers = [ChannelSubscriber("rt/arm_sdk", LowCmd_)]
-    subscribers[0].Init(robot.on_arm, 10)
+    robot.subscribers = [ChannelSubscriber("rt/arm_sdk", LowCmd_)]
+    robot.subscribers[0].Init(robot.on_arm, 10)
     for side in ("left", "right"):
         sub = ChannelSubscriber(f"rt/dex3/{side}/cmd", HandCmd_)
         sub.Init(lambda msg, side=side: robot.on_hand(side, msg), 10)
-        subscribers.append(sub)
-    threading.Thread(target=_control, args=(sys.stdin, robot), daemon=True).start()
-    robot.record(kind="ready")
+        robot.subscribers.append(sub)
+    return odom, key_info
+
+
+def _probe(services: list[str]) -> list[str]:
+    """Ask each service for its api version, as the daemons do, until each has answered; the
+    ones that never did. "Ready" then means answering, not only started."""
+    clients: dict[str, Client] = {}
+    _side_by_side(lambda name: clients.__setitem__(name, Client(name)), services)  # each sleeps 0.5 s
+    deadline = time.monotonic() + PROBE_SECONDS
+    waiting = list(services)
+    for client in clients.values():
+        client.SetTimeout(0.5)
+    while waiting and time.monotonic() < deadline:
+        waiting = [name for name in waiting if clients[name].GetServerApiVersion()[0] != 0]
+    return waiting
+
+
+def _run(robot: Robot, odom: ChannelPublisher, key_info: ChannelPublisher) -> None:
     period, last_odom = 0.01, 0.0
     while True:
         time.sleep(period)
@@ -271,8 +348,6 @@ def _control(stream: Any, robot: Robot) -> None:
                 robot.faults.append(dict(order["fault"]))
             if "arrive" in order:
                 robot.arrive = bool(order["arrive"])
-    import os
-
     os._exit(0)  # the test went away: so does the fake robot
 
 
