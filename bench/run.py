@@ -24,7 +24,7 @@ import traceback
 from pathlib import Path
 from typing import Any, Callable
 
-from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, tick_overhead, unitree, web
+from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, soak, tick_overhead, unitree, web
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -40,6 +40,7 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     perception.NAME: perception.run,
     web.NAME: web.run,
     unitree.NAME: unitree.run,
+    soak.NAME: soak.run,
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")

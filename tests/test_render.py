@@ -124,3 +124,21 @@ def test_yaml_format_is_the_expanded_tree():
 def test_unknown_format_is_an_error():
     with pytest.raises(RenderError, match="unknown format 'jpeg'; expected one of unicode, ascii, dot, svg, png, yaml"):
         render(TOUR, "jpeg")
+
+
+def _png_size(png: bytes) -> tuple[int, int]:
+    """Width and height from a PNG's IHDR chunk."""
+    return int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+
+
+@needs_dot
+def test_a_wide_tree_is_drawn_left_to_right_so_its_picture_is_not_a_strip():
+    tour = load_tree(Path(__file__).parents[1] / "trees" / "lab_tour.yaml")
+    assert render_module.direction(tour.root) == "LR"
+    width, height = _png_size(render(tour, "png"))
+    assert max(width, height) / min(width, height) < 4, (width, height)
+
+
+def test_a_tree_as_deep_as_it_is_wide_is_drawn_top_to_bottom():
+    assert render_module.direction(TOUR.root) == "TB"
+    assert "rankdir=TB" in render(TOUR, "dot")

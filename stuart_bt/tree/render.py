@@ -31,6 +31,7 @@ BRANCHES = {
 FILL = {"SUCCESS": "#b7e1a1", "FAILURE": "#f4a6a6", "RUNNING": "#ffe08a", "INVALID": "#e0e0e0"}
 SHAPES = {"composite": "box", "decorator": "hexagon", "leaf": "ellipse"}
 MAX_VALUE = 40
+WIDE = 2.0  # leaves per level of depth above which a picture is laid out left to right
 
 
 class RenderError(RuntimeError):
@@ -119,10 +120,25 @@ def _quote(text: str) -> str:
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
 
+def direction(root: NodeSpec) -> str:
+    """``TB`` (top to bottom) for a tree about as deep as it is wide, ``LR`` (left to right) for a
+    wide one: a tour of six stations drawn top to bottom is a strip thousands of pixels wide and a
+    few hundred high, unreadable on any screen; drawn left to right its leaves stack down the page
+    and its labels keep their size."""
+    leaves = depth = 0
+    stack = [(root, 1)]
+    while stack:
+        node, level = stack.pop()
+        depth = max(depth, level)
+        leaves += not node.children
+        stack += [(child, level + 1) for child in node.children]
+    return "LR" if leaves > WIDE * depth else "TB"
+
+
 def _dot(spec: TreeSpec, statuses: dict[str, str]) -> str:
     out = [
         f"digraph {_quote(spec.root.name)} {{",
-        '  graph [rankdir=TB, fontname="Helvetica"];',
+        f'  graph [rankdir={direction(spec.root)}, fontname="Helvetica"];',
         '  node [fontname="Helvetica", fontsize=11, style=filled, fillcolor="#ffffff"];',
         '  edge [arrowsize=0.6];',
     ]
