@@ -121,6 +121,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     view.summary(report)
     if args.report:
         print(f"report: {args.report}", file=sys.stderr)
+    if outcome.status == "ERROR":  # the run could not go on: one sentence, no traceback
+        print(f"stuart-bt: {outcome.reason}; the run was stopped", file=sys.stderr)
     if outcome.status == "SUCCESS":
         return EXIT_OK
     return 128 + interrupted[0] if interrupted else EXIT_FAILED

@@ -20,8 +20,10 @@ class Clock(Protocol):
 
     def now(self) -> float: ...
 
-    def sleep_until(self, t: float) -> None:
-        """Block the caller until ``now() >= t`` (returns at once if already past)."""
+    def sleep_until(self, t: float, wake: threading.Event | None = None, max_wall: float | None = None) -> None:
+        """Block the caller until ``now() >= t`` (returns at once if already past), or sooner:
+        when ``wake`` is set (a stop request) or after ``max_wall`` wall seconds (the caller has
+        other duties and asks again)."""
 
     def spec(self) -> str:
         """Text form that :func:`clock_from_spec` turns back into an equivalent clock."""
@@ -55,9 +57,15 @@ class ScaledClock:
     def now(self) -> float:
         return (time.time() - self._epoch) * self._factor
 
-    def sleep_until(self, t: float) -> None:
+    def sleep_until(self, t: float, wake: threading.Event | None = None, max_wall: float | None = None) -> None:
         remaining = (t - self.now()) / self._factor
-        if remaining > 0:
+        if max_wall is not None:
+            remaining = min(remaining, max_wall)
+        if remaining <= 0:
+            return
+        if wake is not None:
+            wake.wait(remaining)
+        else:
             time.sleep(remaining)
 
     def spec(self) -> str:
@@ -99,8 +107,8 @@ class ManualClock:
         with self._lock:
             self._t = max(self._t, float(t))
 
-    def sleep_until(self, t: float) -> None:
-        self.set(t)
+    def sleep_until(self, t: float, wake: threading.Event | None = None, max_wall: float | None = None) -> None:
+        self.set(t)  # manual time never waits: nothing to wake from
 
     def spec(self) -> str:
         # A manual clock cannot be shared with another process; daemons get real time.

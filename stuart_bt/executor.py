@@ -26,11 +26,12 @@ from .events import EventStream
 
 Hook = Callable[[], None]
 FINISHED = (Status.SUCCESS, Status.FAILURE)
+WAITING_DUTY_PERIOD = 0.25  # wall seconds: how often a tick waiting on sim time does its other duties
 
 
 @dataclass
 class RunOutcome:
-    status: str  # SUCCESS | FAILURE | STOPPED | TIMEOUT
+    status: str  # SUCCESS | FAILURE | STOPPED | TIMEOUT | ERROR (the run could not go on: its world died)
     started: float
     ended: float
     ticks: int
@@ -49,6 +50,7 @@ class Executor:
     rate: float = 20.0
     pre_tick: list[Hook] = field(default_factory=list)
     on_halt: list[Hook] = field(default_factory=list)
+    while_waiting: list[Hook] = field(default_factory=list)  # run every WAITING_DUTY_PERIOD in long sim waits
     overrun_warning_interval: float = 1.0  # clock seconds between two overrun warnings
 
     def __post_init__(self) -> None:
@@ -60,6 +62,7 @@ class Executor:
         self._last = [n.status for n in self._nodes]
         self._stop = threading.Event()
         self._stop_reason: str | None = None
+        self._stop_status = "STOPPED"
         self._last_overrun_warning = float("-inf")
         self.ticks = 0
         self.overruns = 0
@@ -68,8 +71,11 @@ class Executor:
     def period(self) -> float:
         return 1.0 / self.rate
 
-    def request_stop(self, reason: str = "stop requested") -> None:
-        """Ask the loop to halt the tree at the start of the next tick (thread- and signal-safe)."""
+    def request_stop(self, reason: str = "stop requested", status: str = "STOPPED") -> None:
+        """Ask the loop to halt the tree at the start of the next tick (thread- and signal-safe).
+        ``status`` is the outcome's: STOPPED when someone asked, ERROR when the run cannot go on."""
+        if not self._stop.is_set():
+            self._stop_status = status
         self._stop_reason = reason
         self._stop.set()
 
@@ -106,7 +112,7 @@ class Executor:
         reason: str | None = None
         while True:
             if self._stop.is_set():
-                status_text, reason = "STOPPED", self._stop_reason
+                status_text, reason = self._stop_status, self._stop_reason
                 self.halt(reason or "stop requested")
                 break
             status = self.tick_once()
@@ -130,8 +136,11 @@ class Executor:
         remaining = deadline - self.clock.now()
         if remaining <= 0:
             return
-        if factor == float("inf"):
-            self.clock.sleep_until(deadline)
+        if factor == float("inf"):  # a sim clock driver: time moves only while it waits
+            while not self._stop.is_set() and self.clock.now() < deadline:
+                self.clock.sleep_until(deadline, wake=self._stop, max_wall=WAITING_DUTY_PERIOD)
+                for hook in self.while_waiting:  # a frozen world must not look like a frozen tree
+                    hook()
         else:  # wake early on a stop request
             self._stop.wait(remaining / factor)
 

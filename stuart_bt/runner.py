@@ -14,6 +14,7 @@ from __future__ import annotations
 import json
 import math
 import shutil
+import signal
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -76,6 +77,7 @@ class Session:
         self.executor: Executor | None = None
         self.outcome: RunOutcome | None = None
         self._hurry = False
+        self.lost: str | None = None  # why the run cannot go on (its world died), once it cannot
         self.run_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-run-"))  # daemon and world logs
         self._log_file: IO[str] | None = None
         self._log_writer: JsonlWriter | None = None
@@ -124,8 +126,12 @@ class Session:
         root = build(spec, lambda node: make_leaf(node, ctx), self.clock, self.blackboard)
         executor = Executor(root, self.clock, self.events, rate=self.options.rate)
         self.events.publish("tree", **tree_event_data(spec))  # views and the bridge learn the structure
+        if self.world is not None:
+            executor.pre_tick.append(lambda: self._check_world(executor))
+            executor.while_waiting.append(lambda: self._check_world(executor))
         if self.supervisor is not None:
             executor.pre_tick.append(self.supervisor.poll)
+            executor.while_waiting.append(self.supervisor.poll)  # keep-alives while the world is frozen
             executor.on_halt.append(self.stop_daemons)
         return executor
 
@@ -141,6 +147,19 @@ class Session:
                                   start=(start.x, start.y, start.yaw))
         self.clock = self.world.clock(driver=True)
         self.events.clock = self.clock
+
+    def _check_world(self, executor: Executor) -> None:
+        """The world server is the run's physics and clock: when it dies the run cannot go on.
+        Checked before every tick (a ``waitpid`` that does not block), so the tree stops on the
+        next tick and every daemon is told to stop, with one sentence that says what happened."""
+        if self.lost is None:
+            code = self.world.proc.poll()
+            if code is None:
+                return
+            how = f"killed by {signal.Signals(-code).name}" if code < 0 else f"exit code {code}"
+            self.lost = f"the simulator's world server (pid {self.world.pid}) died ({how})"
+            self.events.publish("warning", message=f"{self.lost}; stopping the run")
+        executor.request_stop(self.lost, status="ERROR")
 
     def __enter__(self) -> "Session":
         try:

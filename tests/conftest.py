@@ -1,12 +1,13 @@
 """The stuart_bt pytest plugin for this checkout (an installed stuart_bt also registers it
-through its ``pytest11`` entry point; registering twice is avoided) and pytester for the
-plugin's own tests."""
+through its ``pytest11`` entry point; registering twice is avoided), pytester for the plugin's
+own tests, and the session guard (tests/session_guard.py): no process a test started outlives
+the session, and temporary files stay in a folder of the session's own."""
 
 from __future__ import annotations
 
 import pytest
 
-pytest_plugins = ["pytester"]
+pytest_plugins = ["pytester", "session_guard"]
 
 
 def pytest_configure(config: pytest.Config) -> None:

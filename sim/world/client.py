@@ -157,12 +157,14 @@ class WorldProcess:
             try:
                 if self.proc.stdin is not None:
                     self.proc.stdin.close()  # the world exits on stdin EOF
+                self.proc.send_signal(signal.SIGCONT)  # ... once it runs: a frozen (SIGSTOPped) world would not see it
             except OSError:
                 pass
             for sig in (None, signal.SIGTERM, signal.SIGKILL):
                 if sig is not None:
                     try:
                         self.proc.send_signal(sig)
+                        self.proc.send_signal(signal.SIGCONT)  # a stopped world takes no signal but these
                     except ProcessLookupError:
                         break
                 try:
@@ -222,6 +224,8 @@ def launch_world(scene: str = "lab", seed: int = 0, speed: float = 0.0, record: 
         argv.append("--loc-noise")
     if hold:
         argv.append("--hold")
+    if owns_dir:
+        argv.append("--remove-dir")  # if this process is killed, the world still cleans up after itself
     if robot is not None:
         argv += ["--robot", str(robot)]
     if start is not None:

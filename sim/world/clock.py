@@ -17,6 +17,7 @@ import math
 import mmap
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -62,6 +63,9 @@ class _Slots:
 
 
 def _pid_alive(pid: int) -> bool:
+    """Whether ``pid`` is a running process. A zombie (dead, not yet reaped: the world is the tree
+    process's own child, reaped only when it closes the world) counts as dead; ``kill(pid, 0)``
+    alone would call it alive, and a clock waiting on a dead world's time would wait forever."""
     if pid <= 0:
         return False
     try:
@@ -70,7 +74,12 @@ def _pid_alive(pid: int) -> bool:
         return False
     except PermissionError:
         return True
-    return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as stat:
+            state = stat.read().rpartition(b")")[2].split()[0]
+    except (OSError, IndexError):
+        return True  # no /proc to ask: kill() said it exists
+    return state not in (b"Z", b"X")
 
 
 class ClockFile:
@@ -179,18 +188,27 @@ class SimClock:
             return 1.0
         return max(1.0, self._f[_RATE])
 
-    def sleep_until(self, t: float) -> None:
+    def sleep_until(self, t: float, wake: threading.Event | None = None, max_wall: float | None = None) -> None:
+        """Wait until sim time ``t`` (a driver lets the world step up to it first). Returns early
+        when ``wake`` is set (a stop request: the world may be frozen, e.g. by SIGSTOP, and Ctrl-C
+        must still work), after ``max_wall`` wall seconds (the caller has other duties, such as
+        keep-alives to the daemons, and calls again), and when the world is gone (then waiting on
+        at wall rate)."""
         if self.driver and self.alive and self._f[_PERMIT] < t:
             self._f[_PERMIT] = t
         pause = 5e-5
+        give_up = math.inf if max_wall is None else time.monotonic() + max_wall
         while True:
             now = self.now()
-            if now >= t:
+            if now >= t or (wake is not None and wake.is_set()) or time.monotonic() >= give_up:
                 return
             if not self._check_alive():
                 gone_wait = t - self.now()
                 if gone_wait > 0:
-                    time.sleep(gone_wait)
+                    if wake is not None:
+                        wake.wait(gone_wait)
+                    else:
+                        time.sleep(gone_wait)
                 return
             rate = self._f[_RATE]
             if rate > 0:  # the world's pace says roughly when t arrives; sleep part of that
@@ -228,9 +246,7 @@ class SimClock:
         if wall >= self._next_liveness:
             self._next_liveness = wall + LIVENESS_PERIOD
             if not _pid_alive(self._world_pid):
-                self._world_gone_at = (self._f[_TIME], time.time())
-                print(f"world clock: the world (pid {self._world_pid}) is gone; time continues at wall rate",
-                      file=sys.stderr)
+                self._world_gone_at = (self._f[_TIME], time.time())  # whoever runs the world says why
                 return False
         return True
 

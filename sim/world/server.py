@@ -21,6 +21,7 @@ import json
 import math
 import os
 import selectors
+import shutil
 import signal
 import socket
 import stat
@@ -773,6 +774,9 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--map-out", default=None, help="at exit, draw the map with the driven path to this PNG")
     parser.add_argument("--loc-noise", action="store_true", help="add localisation noise to the reported base pose")
     parser.add_argument("--start", default=None, help="start pose X,Y[,YAW] (default 0,0,0: the entrance)")
+    parser.add_argument("--remove-dir", action="store_true",
+                        help="at exit, remove the socket's folder (a temporary folder made for this world: its "
+                             "owner may have been killed and cannot remove it)")
     parser.add_argument("--ignore-stdin", action="store_true",
                         help="do not exit when stdin closes (for running detached, e.g. with </dev/null)")
     return parser.parse_args(argv)
@@ -853,6 +857,8 @@ def main(argv: list[str] | None = None) -> int:
         if server is not None:
             server.close()
         clock.close(remove=True)
+        if options.remove_dir:
+            shutil.rmtree(run_dir, ignore_errors=True)
         if viewer is not None:
             viewer.close()
         print(f"world: stopped at t={world.t:.3f} s ({reason})", file=sys.stderr)

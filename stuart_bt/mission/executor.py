@@ -462,12 +462,18 @@ class MissionExecutor:
         m.status = "running"
         self.events.publish("mission", id=m.id, phase="started", tasks=[str(c) for c in m.calls[m.done:]],
                             resumed=m.resumed)
+        if self.session.lost is not None:  # the world is gone: nothing can run any more
+            self._finish(m, "failed", self.session.lost)
+            return
         compiled, index, unplannable = self._plan_remaining(m)
         while compiled is not None:
             outcome, succeeded, failed_path = self._run_tree(compiled.spec, m)
             m.done = max(m.done, _calls_done(compiled, index, succeeded))
             if outcome.status == "SUCCESS":
                 break
+            if outcome.status == "ERROR":  # no repair can help: the run itself could not go on
+                self._finish(m, "failed", outcome.reason)
+                return
             if m.cancelled == "replaced" or self._closing:
                 self._finish(m, "replaced", "replaced by a new command")
                 return
