@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import itertools
 import threading
+import time
 from collections import deque
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -48,6 +49,9 @@ from ..tree.spec import Location, NodeSpec, TreeSpec
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, Conversation, interpret
 from .compiler import CompiledMission, compile_plan
 
+MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
+MAX_QUEUED_REPLIES = 2  # replies waiting to be said; a newer one pushes out the oldest
+STALE_REPLY_S = 10.0  # wall seconds a reply may wait for its turn before it answers a moment long gone
 OBJECT_FAULTS = ("not_found", "unreachable")  # failures that mean: the object is not where memory says
 
 
@@ -85,6 +89,7 @@ class Mission:
     cancelled: str | None = None  # "stopped" | "replaced": asked to end while running
     stop_tick: int | None = None  # executor tick when the stop was asked for
     halt_tick: int | None = None  # executor tick count when it halted
+    resume_requested: bool = False  # "continue" came while its stop was still under way
 
     def to_dict(self) -> dict[str, Any]:
         return {"id": self.id, "utterance": self.utterance, "tasks": [str(c) for c in self.calls],
@@ -97,6 +102,7 @@ class _Say:
 
     text: str
     why: str
+    made: float = field(default_factory=time.monotonic)  # wall time it was queued: old replies go unsaid
 
 
 @dataclass
@@ -138,7 +144,9 @@ class MissionExecutor:
         self._worker: threading.Thread | None = None
         self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
         self._pending_replies = 0
-        self._asides: deque[str] = deque()  # replies to say while a mission runs, between its own speech
+        self._asides: deque[str] = deque(maxlen=MAX_QUEUED_REPLIES)  # said between a mission's own speech
+        self._unanswered = 0  # utterances let go while too many replies were pending
+        self._last_unanswered_warning = float("-inf")
         self._proposal: tuple[str, list[TaskIntent]] | None = None  # (request, intents) awaiting a yes
 
     # -- life cycle ---------------------------------------------------------------------------------
@@ -261,6 +269,8 @@ class MissionExecutor:
                 m.status, m.reason = "stopped", "stop requested"
                 self.events.publish("mission", id=m.id, phase="stopped", reason="queue cleared")
             current = self._current
+            if isinstance(current, Mission):
+                current.resume_requested = False  # a stop after "continue" wins over it
             if isinstance(current, Mission) and current.cancelled is None:
                 current.cancelled = "replaced" if command.replace else "stopped"
                 if self._executor is not None:
@@ -268,24 +278,48 @@ class MissionExecutor:
                     self._executor.request_stop(command.text)
             elif self._executor is not None:
                 self._executor.request_stop(command.text)
+            if not isinstance(current, Mission) and dropped and not command.replace:
+                self.halted = dropped[0]  # stopped before it started: "continue" starts it
 
     def _continue(self) -> None:
+        """Resume the stopped mission, in the order things were said: a "continue" that arrives
+        while the stop before it is still halting the tree resumes the mission as soon as the
+        halt is done, instead of finding nothing to continue."""
         with self._cond:
+            current = self._current
+            if self.halted is None and isinstance(current, Mission) and current.cancelled == "stopped":
+                current.resume_requested = True
+                return
             mission, self.halted = self.halted, None
             if mission is None:
                 self._queue.appendleft(_Say("There is nothing to continue.", "continue"))
             else:
-                mission.resumed, mission.cancelled, mission.status = True, None, "queued"
-                self._queue.appendleft(mission)
-                self.events.publish("mission", id=mission.id, phase="resumed", done=mission.done)
+                self._resume(mission)
             self._cond.notify_all()
+
+    def _resume(self, mission: Mission) -> None:
+        """Queue a stopped mission first, to go on where it stopped (``_cond`` held)."""
+        mission.resumed, mission.cancelled, mission.status = True, None, "queued"
+        self._queue.appendleft(mission)
+        self.events.publish("mission", id=mission.id, phase="resumed", done=mission.done)
 
     def _converse(self, text: str) -> None:
         """Answer in the conversation thread; a question about what the robot sees, asked while
-        it is idle, first gets one fresh look (an ``observe`` tree) so the answer is current."""
+        it is idle, first gets one fresh look (an ``observe`` tree) so the answer is current.
+        A robot answers one question at a time: while MAX_PENDING_REPLIES are being thought
+        about, more talk is let go (a warning, at most one a second, counts it) instead of piling
+        up replies that would keep the next command waiting."""
         from ..conversation.prompt import is_vision_question
 
         with self._cond:
+            if self._pending_replies >= MAX_PENDING_REPLIES:
+                self._unanswered += 1
+                now = time.monotonic()
+                if now - self._last_unanswered_warning >= 1.0:
+                    self._last_unanswered_warning = now
+                    self.events.publish("warning", message=f"too much talk at once: {self._unanswered} "
+                                        f"utterance(s) not answered so far (latest: {text[:60]!r})")
+                return
             self._pending_replies += 1
             look_first = (is_vision_question(text) and self._current is None and not self._queue
                           and self.session.supervisor is not None and "vision" in self.session.supervisor.families)
@@ -314,13 +348,31 @@ class MissionExecutor:
                     if isinstance(self._current, Mission) and self._executor is not None:
                         self._asides.append(reply.text)  # said at the mission's next pause in speech
                     else:
-                        self._queue.appendleft(_Say(reply.text, "reply"))
+                        self._queue_reply(_Say(reply.text, "reply"))
             finally:
                 with self._cond:
                     self._pending_replies -= 1
                     self._cond.notify_all()
 
         self._talk.submit(answer)
+
+    def _queue_reply(self, say: _Say) -> None:
+        """Queue a reply first in line, keeping at most MAX_QUEUED_REPLIES: the oldest goes
+        unsaid (``_cond`` held). Replies go before missions, so the queue of them stays short."""
+        queued = [job for job in self._queue if isinstance(job, _Say) and job.why == "reply"]
+        for old in queued[: max(0, len(queued) - MAX_QUEUED_REPLIES + 1)]:
+            self._queue.remove(old)
+            self.events.publish("log", level="info", message=f"reply dropped unsaid (newer talk came): {old.text[:60]!r}")
+        self._queue.appendleft(say)
+
+    def _stale(self, job: _Say) -> bool:
+        """A reply that waited longer than STALE_REPLY_S answers a moment that has passed."""
+        waited = time.monotonic() - job.made
+        if job.why != "reply" or waited <= STALE_REPLY_S:
+            return False
+        self.events.publish("log", level="info", message=f"reply dropped unsaid after waiting {waited:.1f} s: "
+                            f"{job.text[:60]!r}")
+        return True
 
     # -- task proposals (stuart_bt.mission.proposals) --------------------------------------------------
     def _propose(self, text: str) -> bool:
@@ -427,7 +479,8 @@ class MissionExecutor:
                 job = self._current = self._queue.popleft()
             try:
                 if isinstance(job, _Say):
-                    self._say(job.text)
+                    if not self._stale(job):
+                        self._say(job.text)
                 elif isinstance(job, _Look):
                     self._look_then_answer(job.question)
                 else:
@@ -441,7 +494,7 @@ class MissionExecutor:
                     self._current = None
                     self._executor = None
                     while self._asides:  # the mission ended before a reply found a pause: say it now
-                        self._queue.appendleft(_Say(self._asides.pop(), "reply"))
+                        self._queue_reply(_Say(self._asides.popleft(), "reply"))
                     self._cond.notify_all()
 
     def _look_then_answer(self, question: str) -> None:
@@ -479,9 +532,14 @@ class MissionExecutor:
                 return
             if outcome.status == "STOPPED" or m.cancelled == "stopped":
                 m.halt_tick = outcome.ticks
-                m.cancelled = None
-                self.halted = m
                 self._finish(m, "stopped", outcome.reason)
+                with self._cond:
+                    m.cancelled = None
+                    if m.resume_requested:  # "continue" was said while this stop was halting the tree
+                        m.resume_requested = False
+                        self._resume(m)
+                    else:
+                        self.halted = m
                 return
             reason = self._failure_reason(failed_path, outcome)
             if m.repairs >= self.options.max_repairs or failed_path is None:
