@@ -217,7 +217,7 @@ def ros_flood(seconds: float, warm_commands: int) -> list[Result]:
     note = (f"{flood['sent']} messages in {flood['seconds']:g} s on /audio_msg (chatter, no wake phrase, "
             f"nonsense, 5000-character text), then 'go to the kitchen'; anchor: the same command before "
             f"the flood, median of {len(before)}")
-    soak = Soak("ros_flood", flood["sent"], warm, end, leftovers, flood["seconds"], "none: a flood of talk")
+    soak = Soak("ros_flood", flood["sent"], warm, end, leftovers, flood["seconds"])
     return [Result(f"{NAME}.ros_flood.good_command_latency", after, "s",
                    Anchor("the same command before the flood (median)", anchor_s),
                    goal=f"< {GOAL_FLOOD_LATENCY_S:g} s", met=after < GOAL_FLOOD_LATENCY_S, note=note),

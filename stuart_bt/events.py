@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from typing import IO, Any, Callable
 
 from .clock import Clock
+from .jsonfile import to_json
 
 
 ENVELOPE = ("t", "wall", "kind", "path")  # an event's own fields in its flat dict form
@@ -58,7 +59,7 @@ class Event:
         return out
 
     def to_json(self) -> str:
-        return json.dumps(self.to_dict(), default=_json_default, separators=(",", ":"))
+        return to_json(self.to_dict(), default=_json_default, separators=(",", ":"))
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "Event":

@@ -15,9 +15,9 @@ variables (docs/robot.md).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
+from .jsonfile import to_json
 
 ACTIONS = {  # action -> (loco daemon command, help)
     "start": ("map_start", "start mapping (then walk the robot around the space)"),
@@ -80,7 +80,7 @@ def cmd_map(args: argparse.Namespace) -> int:
         command = ACTIONS[args.action][0]
         request = supervisor.wait(supervisor.client("loco").request(command, request_args), timeout=args.timeout)
     if request.ok:
-        print(json.dumps(request.result))
+        print(to_json(request.result))
         return EXIT_OK
     code = f" (vendor code {request.vendor_code})" if request.vendor_code is not None else ""
     print(f"stuart-bt: map {args.action} failed{code}: {request.reason or request.status}", file=sys.stderr)

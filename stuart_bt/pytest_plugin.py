@@ -14,13 +14,13 @@ test fails, its runs are summarised in the failure report and their reports save
 
 from __future__ import annotations
 
-import json
 import os
 from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import pytest
+from .jsonfile import to_json
 
 if TYPE_CHECKING:  # imported when a fixture runs: pytest starts no slower for having stuart_bt installed
     from .runner import RunOptions
@@ -128,6 +128,6 @@ def describe_runs(results: list[RunResult], save_to: Path | None) -> str:
         if save_to is not None:
             path = save_to / f"stuart_run_{n}.json"
             doc = {**rep, "world": {"initial": r.initial_world, "final": r.final_world}}
-            path.write_text(json.dumps(doc, indent=1, default=str), encoding="utf-8")
+            path.write_text(to_json(doc, indent=1, default=str), encoding="utf-8")
             lines.append(f"  report: {path}")
     return "\n".join(lines)

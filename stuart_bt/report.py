@@ -9,11 +9,11 @@ log, so a report can be rebuilt after the fact.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any, Iterable
 
 from .events import Event, EventRecorder, EventStream
+from .jsonfile import to_json
 
 
 class ReportBuilder(EventRecorder):
@@ -105,4 +105,4 @@ def _collect(record: dict[str, Any], result: dict[str, Any], t: float, visited: 
 
 def write_report(report: dict[str, Any], path: str | Path) -> None:
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    Path(path).write_text(json.dumps(report, indent=2, default=str) + "\n", encoding="utf-8")
+    Path(path).write_text(to_json(report, indent=2, default=str) + "\n", encoding="utf-8")

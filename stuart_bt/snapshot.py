@@ -25,13 +25,13 @@ running path, root first. ``seq`` grows by one with every change to nodes or tre
 
 from __future__ import annotations
 
-import json
 import threading
 from typing import Any, Callable, Iterable
 
 from .events import Event, EventStream, _json_default
 from .tree.render import category
 from .tree.spec import NodeSpec, TreeSpec
+from .jsonfile import to_json
 
 FORMAT = "stuart_bt.snapshot/1"
 
@@ -155,4 +155,4 @@ class TreeSnapshot:
 
     def to_json(self) -> str:
         """The snapshot as one JSON line (values the blackboard holds as objects use their to_dict)."""
-        return json.dumps(self.to_dict(), default=_json_default, separators=(",", ":"))
+        return to_json(self.to_dict(), default=_json_default, separators=(",", ":"))

@@ -8,13 +8,13 @@ frame x forward / y left, yaw counter-clockwise.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 from .jsonfile import read_json
+from .jsonfile import to_json
 
 
 @dataclass
@@ -32,6 +32,18 @@ class Pose:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "Pose":
         return cls(float(d.get("x", 0.0)), float(d.get("y", 0.0)), float(d.get("yaw", 0.0)))
+
+    @classmethod
+    def from_daemon(cls, d: Any) -> "Pose | None":
+        """A pose a daemon reported, or None when it is not one: x, y (and yaw, default 0) must
+        be finite numbers. Daemon output is checked here, at the edge, so a garbled or NaN pose
+        never reaches the world state, the planner or a map."""
+        if not isinstance(d, dict):
+            return None
+        values = [d.get("x"), d.get("y"), d.get("yaw", 0.0)]
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values):
+            return None
+        return cls(float(values[0]), float(values[1]), float(values[2]))
 
     @classmethod
     def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> "Pose":
@@ -125,4 +137,4 @@ def save_markers(path: str | Path, markers: dict[str, Marker], frame: str = "map
             m.name: {"x": m.x, "y": m.y, "yaw": m.yaw, "display_name": m.display_name} for m in markers.values()
         },
     }
-    Path(path).write_text(json.dumps(body, indent=2) + "\n", encoding="utf-8")
+    Path(path).write_text(to_json(body, indent=2) + "\n", encoding="utf-8")

@@ -24,6 +24,8 @@ import time
 from pathlib import Path
 from typing import IO, Any
 
+from stuart_bt.jsonfile import to_json
+
 from .clock import SimClock, default_clock_path
 
 READ_CHUNK = 1 << 16
@@ -68,7 +70,7 @@ class WorldClient:
         """Send one request and wait for its reply; raises :class:`WorldError` on refusal."""
         with self._lock:
             request_id = next(self._ids)
-            line = json.dumps({"id": request_id, "cmd": cmd, "args": args}, separators=(",", ":")) + "\n"
+            line = to_json({"id": request_id, "cmd": cmd, "args": args}, separators=(",", ":")) + "\n"
             try:
                 self._sock.sendall(line.encode())
             except OSError as e:

@@ -17,7 +17,6 @@ Protocol (docs/sim.md): request ``{"id", "cmd", "args"}``, reply ``{"id", "ok": 
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import selectors
@@ -37,6 +36,7 @@ import numpy as np
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import DaemonError
 from stuart_bt.daemon.protocol import MAX_LINE, LineBuffer, Oversize, ProtocolError, decode, encode
+from stuart_bt.jsonfile import to_json
 
 from .arms import SIDES, ArmError, Hands, JointPlayer
 from .base import BaseController, BaseLimits, PersonCheck, wrap
@@ -839,7 +839,7 @@ def main(argv: list[str] | None = None) -> int:
         ready = {"type": "ready", "socket": options.socket, "clock": options.clock, "timestep": world.dt,
                  "pid": os.getpid(), "scene": world.scene_name, "robot": str(scene.robot_path),
                  "objects": sorted(scene.objects), "speed": speed}
-        os.write(out_fd, (json.dumps(ready) + "\n").encode())
+        os.write(out_fd, (to_json(ready) + "\n").encode())
         print(f"world: ready on {options.socket} (clock {options.clock}, dt {world.dt:g} s, pid {os.getpid()})",
               file=sys.stderr)
         reason = server.run()

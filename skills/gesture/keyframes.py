@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from stuart_bt import gestures
+from stuart_bt.jsonfile import to_json
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.suggest import did_you_mean
 
@@ -383,7 +384,7 @@ def save_gesture_file(path: Path | str, name: str, frames: list[Keyframe]) -> Pa
            "keyframes": [{"t": round(f.t, 4), "joints": {k: _round_inward(k, float(v)) for k, v in f.joints.items()}}
                          for f in frames]}
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+    path.write_text(to_json(doc, indent=1) + "\n", encoding="utf-8")
     return path
 
 

@@ -21,6 +21,7 @@ from . import protocol as p
 
 SENT, ACCEPTED, DONE, ERROR = "sent", p.ACCEPTED, p.DONE, p.ERROR
 READ_CHUNK = 1 << 16
+WARNINGS_PER_SECOND = 5  # about one daemon's bad output; more in the same second are counted, not sent
 _NOT_EVENT_FIELDS = ("id", "type", "family", "kind", "path")  # taken by the event itself
 
 
@@ -101,6 +102,7 @@ class DaemonClient:
         self._lines = p.LineBuffer()
         self._out = bytearray()
         self._pending: dict[str, Request] = {}
+        self._warn_window, self._warned, self._held_back = float("-inf"), 0, 0  # warning rate limit
         self._down_reason = f"{family} daemon is not started"
 
     # -- connection (the supervisor's side) ---------------------------------------------------
@@ -256,4 +258,17 @@ class DaemonClient:
                             reason=reason)
 
     def _warn(self, message: str) -> None:
+        """A warning about this daemon's output, at most WARNINGS_PER_SECOND a second: a daemon
+        that babbles must not flood the event stream (and the report, the log, the views and the
+        ROS bridge behind it). What was held back is counted in the next warning that goes out."""
+        now = time.monotonic()
+        if now - self._warn_window >= 1.0:
+            self._warn_window, self._warned = now, 0
+        if self._warned >= WARNINGS_PER_SECOND:
+            self._held_back += 1
+            return
+        self._warned += 1
+        if self._held_back:
+            message += f" ({self._held_back} more like it were not reported)"
+            self._held_back = 0
         self.events.publish("warning", family=self.family, message=message)

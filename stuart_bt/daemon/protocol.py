@@ -8,11 +8,15 @@ string and can never start a second command.
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 from typing import Any
 
+from ..jsonfile import to_json
+
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
+MAX_DEPTH = 32  # nesting of objects and arrays in one line; deeper lines are refused before parsing
 
 # Message types (the "type" field of every daemon -> framework line).
 READY = "ready"
@@ -70,20 +74,62 @@ def encode(message: dict[str, Any]) -> bytes:
     ``json.dumps`` escapes control characters inside strings, so the only raw newline in the
     output is the terminating one.
     """
-    return (json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False) + "\n").encode()
+    return (to_json(message, separators=(",", ":"), ensure_ascii=False) + "\n").encode()
 
 
 def decode(line: bytes | str) -> dict[str, Any]:
-    """Parse one line (without or with its newline) into a message object."""
+    """Parse one line (without or with its newline) into a message object.
+
+    Refused with :class:`ProtocolError`, never another exception: a line over MAX_LINE, nesting
+    deeper than MAX_DEPTH (checked before parsing, since Python's parser recurses), anything that
+    is not JSON, and NaN or infinite numbers (``NaN``, ``Infinity``, ``1e999``), which JSON does
+    not have and which would poison the world state."""
     if len(line) > MAX_LINE + 1:
         raise ProtocolError(f"line of {len(line)} bytes is longer than the {MAX_LINE}-byte limit")
+    raw = line.encode("utf-8", "surrogatepass") if isinstance(line, str) else line
+    if raw.count(b"[") + raw.count(b"{") > MAX_DEPTH and _depth(raw) > MAX_DEPTH:
+        raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
     try:
-        message = json.loads(line)
-    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        message = json.loads(raw, parse_constant=_refuse_constant, parse_float=_finite_float)
+    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as e:
         raise ProtocolError(f"not JSON: {e}") from None
     if not isinstance(message, dict):
         raise ProtocolError(f"expected a JSON object, got {type(message).__name__}")
     return message
+
+
+def _depth(raw: bytes) -> int:
+    """The deepest nesting of objects and arrays in ``raw``, brackets inside strings not counted;
+    a loop, not recursion, so a line of 300,000 brackets costs time, not the stack."""
+    depth = deepest = 0
+    in_string = escaped = False
+    for byte in raw:
+        if in_string:
+            if escaped:
+                escaped = False
+            elif byte == 0x5C:  # backslash
+                escaped = True
+            elif byte == 0x22:  # quote
+                in_string = False
+        elif byte == 0x22:
+            in_string = True
+        elif byte in (0x5B, 0x7B):  # [ {
+            depth += 1
+            deepest = max(deepest, depth)
+        elif byte in (0x5D, 0x7D):  # ] }
+            depth -= 1
+    return deepest
+
+
+def _refuse_constant(name: str) -> float:
+    raise ProtocolError(f"{name} is not a JSON number")
+
+
+def _finite_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ProtocolError(f"{text} is out of range for a number")
+    return value
 
 
 def parse_request(message: dict[str, Any]) -> tuple[str, str, dict[str, Any]]:

@@ -9,13 +9,13 @@ effects the planner predicted. A tree from a failed search marks the task that f
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
 
 from .domain import format_value
 from .plan import TaskNode, describe_changes
+from ..jsonfile import to_json
 
 MAX_INDENT = 40  # deeper levels are drawn at this indentation, marked with their depth
 UNICODE = {"tee": "├─ ", "last": "└─ ", "pipe": "│  ", "gap": "   ", "no": "✗", "to": "→", "then": "⇒"}
@@ -175,7 +175,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
         return 1
     except PlanningFailed as e:
         if args.json:
-            print(json.dumps(e.to_dict(), indent=2))
+            print(to_json(e.to_dict(), indent=2))
         else:
             print(str(e))
             if any(n.status == "planned" and n.kind != "mission" for n in e.root.walk()):
@@ -184,11 +184,11 @@ def cmd_plan(args: argparse.Namespace) -> int:
         return 1
     except PlanningBudgetExceeded as e:
         if args.json:
-            print(json.dumps(e.to_dict(), indent=2))
+            print(to_json(e.to_dict(), indent=2))
         print(f"stuart-bt: {e}", file=sys.stderr)
         return 1
     if args.json:
-        print(json.dumps(plan.to_dict(), indent=2))
+        print(to_json(plan.to_dict(), indent=2))
         return 0
     steps = plan.primitives()
     s = plan.stats

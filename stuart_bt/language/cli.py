@@ -25,11 +25,11 @@ Standalone: ``python -m stuart_bt.language.cli [options] UTTERANCE``.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any, BinaryIO
+from ..jsonfile import to_json
 
 MAX_LINE_BYTES = 64 * 1024
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -89,10 +89,10 @@ def cmd_parse(args: argparse.Namespace) -> int:
     try:
         if args.jsonl:
             for text, truncated in read_lines(sys.stdin.buffer):
-                write(json.dumps(one(text, truncated), ensure_ascii=False))
+                write(to_json(one(text, truncated), ensure_ascii=False))
         else:
             text = clean(" ".join(args.utterance))
-            write(json.dumps(one(text), ensure_ascii=False, indent=2 if args.pretty else None))
+            write(to_json(one(text), ensure_ascii=False, indent=2 if args.pretty else None))
     except BrokenPipeError:  # the reader went away: nothing left to say to it
         _silence_stdout()
     return EXIT_OK

@@ -19,11 +19,11 @@ are 0 (numbers) or "" (target), never missing, so every intent has the same JSON
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
+from ..jsonfile import to_json
 
 NAVIGATE, MOVE, TURN, TURN_AROUND = "navigate_to_marker", "move_relative", "turn_by_angle", "turn_around"
 PICK, GESTURE, STOP, FIND = "pick_up", "gesture", "stop", "find"
@@ -48,7 +48,7 @@ class TaskIntent:
                 "raw_text": self.raw_text}
 
     def to_json(self) -> str:
-        return json.dumps(self.to_dict(), ensure_ascii=False)
+        return to_json(self.to_dict(), ensure_ascii=False)
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> TaskIntent:

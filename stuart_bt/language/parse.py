@@ -17,7 +17,6 @@ resolved against whichever map the robot is on.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -25,6 +24,7 @@ from typing import Any
 from .grammar import Defaults, Grammar
 from .intents import TaskIntent
 from .wake import GREETINGS, WakeFilter
+from ..jsonfile import to_json
 
 
 @dataclass
@@ -42,7 +42,7 @@ class ParseResult:
                 "intents": [i.to_dict() for i in self.intents], "conversational": self.conversational}
 
     def to_json(self) -> str:
-        return json.dumps(self.to_dict(), ensure_ascii=False)
+        return to_json(self.to_dict(), ensure_ascii=False)
 
 
 class Parser:

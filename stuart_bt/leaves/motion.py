@@ -38,8 +38,9 @@ class Navigate(SkillLeaf):
 
     def on_done(self, result: dict[str, Any]) -> None:
         world = self.ctx.blackboard.world
-        if "pose" in result:
-            world.pose = Pose.from_dict(result["pose"])
+        pose = Pose.from_daemon(result.get("pose"))
+        if pose is not None:  # a garbled pose is not taken (the runner warns about the daemon's lines)
+            world.pose = pose
         if result.get("marker"):
             world.last_marker = result["marker"]
 
@@ -82,5 +83,6 @@ class Turn(SkillLeaf):
         return "turn", {"angle": angle}
 
     def on_done(self, result: dict[str, Any]) -> None:
-        if "pose" in result:
-            self.ctx.blackboard.world.pose = Pose.from_dict(result["pose"])
+        pose = Pose.from_daemon(result.get("pose"))
+        if pose is not None:
+            self.ctx.blackboard.world.pose = pose

@@ -13,10 +13,10 @@ the sim's own position of the object and the error), writes the annotated pictur
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
+from ..jsonfile import to_json
 
 HELP = "look once: detections with torso and world positions, an annotated picture"
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -104,7 +104,7 @@ def _perceive(args: argparse.Namespace) -> int:
         save_annotated(frame.rgb, located, args.output)
     report = _report(frame, located, memory.summary(), truth)
     if args.json:
-        print(json.dumps(report, indent=2))
+        print(to_json(report, indent=2))
     else:
         _print_table(report, args)
     return EXIT_OK if located else EXIT_FAILED

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
+from ..jsonfile import to_json
 
 DEPTH_SCALE = 0.001  # metres per depth unit (the RealSense default: millimetres)
 
@@ -86,7 +87,7 @@ def save_frame(folder: str | Path, index: int, frame: Frame, depth_scale: float 
     folder.mkdir(parents=True, exist_ok=True)
     meta = folder / "intrinsics.json"
     if not meta.exists():
-        meta.write_text(json.dumps({**frame.intrinsics.to_dict(), "depth_scale": depth_scale,
+        meta.write_text(to_json({**frame.intrinsics.to_dict(), "depth_scale": depth_scale,
                                     "label_names": list(frame.label_names)}, indent=2) + "\n", encoding="utf-8")
     base = folder / f"{index:06d}"
     cv2.imwrite(f"{base}_color.png", cv2.cvtColor(frame.rgb, cv2.COLOR_RGB2BGR))
@@ -94,6 +95,6 @@ def save_frame(folder: str | Path, index: int, frame: Frame, depth_scale: float 
     cv2.imwrite(f"{base}_depth.png", depth_units)
     if frame.labels is not None:
         cv2.imwrite(f"{base}_labels.png", (frame.labels.astype(np.int32) + 1).astype(np.uint16))
-    Path(f"{base}.json").write_text(json.dumps({"t": frame.t, "robot_pose": frame.robot_pose.to_dict()}) + "\n",
+    Path(f"{base}.json").write_text(to_json({"t": frame.t, "robot_pose": frame.robot_pose.to_dict()}) + "\n",
                                     encoding="utf-8")
     return base

@@ -8,11 +8,11 @@ them all. The message formats are documented in docs/ros.md.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from typing import Any
 
 from ..events import Event
+from ..jsonfile import to_json
 
 # topic key -> relative topic name (the original system's names; docs/ros.md)
 AUDIO_IN = "audio_msg"  # raw speech-recogniser text: the wake filter applies
@@ -61,7 +61,7 @@ class EventTranslator:
         d = event.data
         if event.kind == "utterance":
             intents = d.get("parsed") if d.get("parsed") is not None else d.get("intents")
-            out += [Outgoing(TASK_INTENT, json.dumps(i, ensure_ascii=False)) for i in intents or []]
+            out += [Outgoing(TASK_INTENT, to_json(i, ensure_ascii=False)) for i in intents or []]
         elif event.kind == "reply" and d.get("gestures"):
             self._tagged[str(d.get("text", ""))] = [str(g) for g in d["gestures"]]
         elif event.kind == "command" and d.get("family") == "tts" and d.get("cmd") == "say":
@@ -72,7 +72,7 @@ class EventTranslator:
         elif event.kind == "pose" and all(isinstance(d.get(k), (int, float)) for k in ("x", "y")):
             out.append(Outgoing(POSE, {"x": float(d["x"]), "y": float(d["y"]), "yaw": float(d.get("yaw") or 0.0)}))
         elif event.kind == "memory":  # the stuart_bt.memory/1 summary (docs/perception.md), as it is
-            out.append(Outgoing(MEMORY_SUMMARY, json.dumps(d, ensure_ascii=False, default=str)))
+            out.append(Outgoing(MEMORY_SUMMARY, to_json(d, ensure_ascii=False, default=str)))
             out.append(Outgoing(MEMORY_MARKERS, memory_objects(d)))
         out.append(Outgoing(EVENTS, event.to_json()))
         return out

@@ -22,6 +22,7 @@ from typing import Any, Iterable
 
 from ..events import Event, EventStream, _json_default
 from ..snapshot import TreeSnapshot
+from ..jsonfile import to_json
 
 FLUSH_EVERY = 0.015  # seconds between two pushes to the browsers
 HISTORY = 50_000  # events a late browser receives (the tour has ~3000 status changes)
@@ -41,7 +42,7 @@ class Client:
         except asyncio.QueueFull:
             self.dropped = True
             self._drain()
-            self.queue.put_nowait(json.dumps({"type": "resync"}))
+            self.queue.put_nowait(to_json({"type": "resync"}))
 
     def _drain(self) -> None:
         while not self.queue.empty():
@@ -89,7 +90,7 @@ class EventHub:
             self._pump.cancel()
             self._pump = None
         for client in list(self.clients):
-            client.end(json.dumps({"type": "bye"}))
+            client.end(to_json({"type": "bye"}))
 
     # -- publishing thread: as little as possible (the executor is waiting) -------------------------
     def _on_event(self, event: Event) -> None:
@@ -110,7 +111,7 @@ class EventHub:
         batch = [self._fold(e) for e in events]
         if not batch or not self.clients:
             return
-        text = json.dumps({"type": "events", "events": batch}, default=_json_default, separators=(",", ":"))
+        text = to_json({"type": "events", "events": batch}, default=_json_default, separators=(",", ":"))
         for client in list(self.clients):
             client.offer(text)
 
@@ -122,7 +123,7 @@ class EventHub:
         self._flush()
         client = Client()
         self.clients.add(client)
-        hello = json.dumps({"type": "hello", "info": self.info, "replay": self.replay,
+        hello = to_json({"type": "hello", "info": self.info, "replay": self.replay,
                             "snapshot": self.snapshot.to_dict(), "events": list(self.history)},
                            default=_json_default, separators=(",", ":"))
         return client, hello
@@ -133,4 +134,4 @@ class EventHub:
 
 def _frozen(data: dict[str, Any]) -> dict[str, Any]:
     """A deep copy as plain JSON data (what the page would receive anyway)."""
-    return json.loads(json.dumps(data, default=_json_default))
+    return json.loads(to_json(data, default=_json_default))

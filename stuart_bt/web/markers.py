@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..suggest import did_you_mean
+from ..jsonfile import to_json
 
 NAME_RULE = re.compile(r"^[a-z][a-z0-9_]{0,39}$")
 DISPLAY_MAX = 60
@@ -135,7 +136,7 @@ class MarkerStore:
         return {"x": round(x, 4), "y": round(y, 4), "yaw": round(yaw, 4), "display_name": display.strip()}
 
     def _write(self, body: dict[str, Any]) -> None:
-        text = json.dumps(body, indent=2) + "\n"
+        text = to_json(body, indent=2) + "\n"
         fd, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
         try:
             with os.fdopen(fd, "w", encoding="utf-8") as f:
