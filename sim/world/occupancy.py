@@ -27,6 +27,8 @@ from typing import Any, Iterable, Mapping, Sequence
 import mujoco
 import numpy as np
 
+from stuart_bt.jsonfile import read_json
+
 FLOOR_CLEAR = 0.03  # geoms entirely below this (rugs, mats) do not block
 ROBOT_HEIGHT = 1.5  # geoms entirely above this (lintels, lamps) do not block
 ROBOT_RADIUS = 0.3
@@ -378,13 +380,16 @@ def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]]
 
 
 def load_markers(path: str | Path | None = None) -> dict[str, dict[str, float]]:
-    """The named markers (default: sim/maps/lab_markers.json)."""
-    import json
+    """The named markers (default: sim/maps/lab_markers.json); a regular file under the data
+    file size limit only (stuart_bt.jsonfile.read_json)."""
+    from stuart_bt.world import MarkerFileError
 
     from .scene import MAPS_DIR
 
-    with open(path or MAPS_DIR / "lab_markers.json", encoding="utf-8") as f:
-        return json.load(f)["markers"]
+    doc = read_json(path or MAPS_DIR / "lab_markers.json", MarkerFileError, "marker file")
+    if not isinstance(doc, dict) or not isinstance(doc.get("markers"), dict):
+        raise MarkerFileError(f"{path}: expected an object with a 'markers' mapping")
+    return doc["markers"]
 
 
 def scene_grid(scene: str = "lab", resolution: float = 0.05, inflation: float = ROBOT_RADIUS) -> OccupancyGrid:

@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ..jsonfile import to_json
+from ..jsonfile import nesting_depth, to_json
 
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
@@ -87,7 +87,7 @@ def decode(line: bytes | str) -> dict[str, Any]:
     if len(line) > MAX_LINE + 1:
         raise ProtocolError(f"line of {len(line)} bytes is longer than the {MAX_LINE}-byte limit")
     raw = line.encode("utf-8", "surrogatepass") if isinstance(line, str) else line
-    if raw.count(b"[") + raw.count(b"{") > MAX_DEPTH and _depth(raw) > MAX_DEPTH:
+    if nesting_depth(raw, MAX_DEPTH) > MAX_DEPTH:
         raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
     try:
         message = json.loads(raw, parse_constant=_refuse_constant, parse_float=_finite_float)
@@ -96,29 +96,6 @@ def decode(line: bytes | str) -> dict[str, Any]:
     if not isinstance(message, dict):
         raise ProtocolError(f"expected a JSON object, got {type(message).__name__}")
     return message
-
-
-def _depth(raw: bytes) -> int:
-    """The deepest nesting of objects and arrays in ``raw``, brackets inside strings not counted;
-    a loop, not recursion, so a line of 300,000 brackets costs time, not the stack."""
-    depth = deepest = 0
-    in_string = escaped = False
-    for byte in raw:
-        if in_string:
-            if escaped:
-                escaped = False
-            elif byte == 0x5C:  # backslash
-                escaped = True
-            elif byte == 0x22:  # quote
-                in_string = False
-        elif byte == 0x22:
-            in_string = True
-        elif byte in (0x5B, 0x7B):  # [ {
-            depth += 1
-            deepest = max(deepest, depth)
-        elif byte in (0x5D, 0x7D):  # ] }
-            depth -= 1
-    return deepest
 
 
 def _refuse_constant(name: str) -> float:

@@ -363,6 +363,12 @@ class NodeReader:
             self.log.add(here, f"include file {given!r} not found{did_you_mean(target.name, candidates)}", path)
             return None
         resolved = target.resolve()
+        roots = include_roots(scope)
+        if not any(resolved.is_relative_to(root) for root in roots):
+            self.log.add(here, f"include file {given!r} is outside the folders trees may include from "
+                         f"({', '.join(str(r) for r in roots)}); add its folder to {SEARCH_PATH_ENV} to allow it",
+                         path)
+            return None
         if any(resolved == seen for seen, _ in scope.chain):
             chain = " -> ".join([*(name for _, name in scope.chain), shown])
             self.log.add(here, f"include cycle: {chain}", path)
@@ -422,3 +428,15 @@ def _option_hint(kind: NodeKind) -> str:
 
 def _shorthand_hint(shorthand: str | None) -> str:
     return f" or a single {shorthand} value" if shorthand else ""
+
+
+SEARCH_PATH_ENV = "STUART_BT_TREE_PATH"  # more folders trees may include from, separated like PATH
+
+
+def include_roots(scope: Scope) -> list[Path]:
+    """The folders an include may name a file in: the top-level tree's folder, the working
+    folder, and the folders on STUART_BT_TREE_PATH. Anything else (``include: /etc/shadow``) is
+    refused unread, so an error can never quote a file that is not the user's tree."""
+    top = scope.chain[0][0].parent if scope.chain else Path.cwd().resolve()
+    extra = [Path(p).resolve() for p in os.environ.get(SEARCH_PATH_ENV, "").split(os.pathsep) if p]
+    return list(dict.fromkeys([top, Path.cwd().resolve(), *extra]))

@@ -17,6 +17,7 @@ import yaml
 from yaml.constructor import ConstructorError, SafeConstructor
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
+from ..jsonfile import NotARegularFile, read_limited
 from .errors import ErrorLog, TreeError
 from .spec import Location
 
@@ -92,9 +93,11 @@ def read_file(path: Path, file: str) -> Source:
         size = path.stat().st_size
         if size > MAX_BYTES:
             return Source(file, None, [TreeError(start, f"file is {size} bytes; tree files are limited to 1 MB")])
-        data = path.read_bytes()
+        data = read_limited(path, MAX_BYTES)
     except FileNotFoundError:
         return Source(file, None, [TreeError(None, f"{file}: file not found")])
+    except NotARegularFile as e:  # a FIFO would hang the loader, a device fill its memory
+        return Source(file, None, [TreeError(None, f"{file}: {e}")])
     except (OSError, ValueError) as e:  # ValueError: a NUL byte in the name
         return Source(file, None, [TreeError(None, f"{file}: cannot read: {getattr(e, 'strerror', None) or e}")])
     if data.startswith(b"\xef\xbb\xbf"):

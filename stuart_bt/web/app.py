@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 import math
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
@@ -33,9 +34,10 @@ from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
-from starlette.types import ASGIApp, Receive, Scope, Send
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from ..jsonfile import nesting_depth
 from ..world import load_markers
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
@@ -45,6 +47,9 @@ from .markers import MarkerConflict, MarkerEditError, MarkerStore
 from .security import CHANGING, COOKIE, Guard
 
 STATIC = Path(str(files("stuart_bt.web").joinpath("static")))
+MAX_BODY = 1 << 20  # bytes of a request body: markers, a gesture, a sentence are a few kilobytes
+MAX_NESTING = 16  # levels of objects and arrays in a request body
+log = logging.getLogger("stuart_bt.web")
 POSE_BLEND = 0.25  # sim seconds the arms take to reach a slider pose
 
 
@@ -192,8 +197,8 @@ def create_app(parts: WebParts) -> Starlette:
         return JSONResponse({"ok": True})
 
     async def socket(websocket: WebSocket) -> None:
-        if not parts.guard.origin_ok(websocket.headers) or not parts.guard.token_ok(
-                websocket.query_params, websocket.headers, websocket.cookies):
+        if not parts.guard.host_ok(websocket.headers) or not parts.guard.origin_ok(websocket.headers) or \
+                not parts.guard.token_ok(websocket.query_params, websocket.headers, websocket.cookies):
             await websocket.close(code=1008)
             return
         await websocket.accept()
@@ -254,8 +259,13 @@ def create_app(parts: WebParts) -> Starlette:
     return _Checked(app, parts.guard)  # type: ignore[return-value]
 
 
+class BodyTooLarge(Exception):
+    """A request body over MAX_BODY bytes: refused while it streams in, never held whole."""
+
+
 class _Checked:
-    """ASGI wrapper: the token on every HTTP request, Origin on changing ones."""
+    """ASGI wrapper: Host and the token on every HTTP request, Origin on changing ones, and a
+    body size cap counted as the body arrives."""
 
     def __init__(self, app: ASGIApp, guard: Guard) -> None:
         self.app = app
@@ -263,9 +273,15 @@ class _Checked:
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
-            await self.app(scope, receive, send)  # the socket checks its own token and origin
+            await self.app(scope, receive, send)  # the socket checks its own host, token and origin
             return
         request = Request(scope)
+        if not self.guard.host_ok(request.headers):
+            await _error("refused: this server is not known by that name (Host)", 403)(scope, receive, send)
+            return
+        if int(request.headers.get("content-length") or 0) > MAX_BODY:
+            await _error(f"the request body is over {MAX_BODY} bytes", 413)(scope, receive, send)
+            return
         if not self.guard.token_ok(request.query_params, request.headers, request.cookies):
             await _error("a token is needed: open the address printed when the server started", 403)(
                 scope, receive, send)
@@ -273,7 +289,23 @@ class _Checked:
         if request.method in CHANGING and not self.guard.origin_ok(request.headers):
             await _error("refused: the request did not come from this page (Origin)", 403)(scope, receive, send)
             return
-        await self.app(scope, receive, send)
+        await self.app(scope, _capped(receive), send)
+
+
+def _capped(receive: Receive) -> Receive:
+    """``receive`` that raises BodyTooLarge once more than MAX_BODY body bytes came in (a chunked
+    body has no Content-Length to check first)."""
+    seen = 0
+
+    async def counting() -> Message:
+        nonlocal seen
+        message = await receive()
+        if message["type"] == "http.request":
+            seen += len(message.get("body", b""))
+            if seen > MAX_BODY:
+                raise BodyTooLarge(f"the request body is over {MAX_BODY} bytes")
+        return message
+    return counting
 
 
 def _error(message: str, status: int) -> Response:
@@ -292,8 +324,14 @@ async def _gesture_refusal(request: Request, exc: Exception) -> Response:
     return JSONResponse({"error": "; ".join(problems), "problems": problems}, status_code=status)
 
 
+async def _internal_error(request: Request, exc: Exception) -> Response:
+    """A bug answered as one line, with no traceback for the client (the server's log has it)."""
+    log.error("%s %s failed: %s: %s", request.method, request.url.path, type(exc).__name__, exc, exc_info=exc)
+    return _error("internal error; the server's log says more", 500)
+
+
 EXCEPTION_HANDLERS = {ControlError: _refusal(409), BadRequest: _refusal(400), MarkerEditError: _refusal(400),
-                      GestureDeskError: _gesture_refusal}
+                      GestureDeskError: _gesture_refusal, BodyTooLarge: _refusal(413), Exception: _internal_error}
 
 
 async def _off_loop(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
@@ -310,13 +348,20 @@ async def _off_loop(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
 
 
 async def _json(request: Request) -> dict[str, Any]:
+    raw = await request.body() or b"{}"
+    if nesting_depth(raw, MAX_NESTING) > MAX_NESTING:
+        raise BadRequest(f"the request body is nested deeper than {MAX_NESTING} levels")
     try:
-        body = json.loads(await request.body() or b"{}")
-    except (json.JSONDecodeError, UnicodeDecodeError):
+        body = json.loads(raw, parse_constant=_no_constant)
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError, ValueError):
         raise BadRequest("the request body is not JSON") from None
     if not isinstance(body, dict):
         raise BadRequest("the request body must be a JSON object")
     return body
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is not JSON")
 
 
 def _number(body: dict[str, Any], key: str) -> float:

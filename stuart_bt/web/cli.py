@@ -28,6 +28,9 @@ def add_serve_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry", help="skill backend (default dry)")
     p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1)")
     p.add_argument("--port", type=int, default=8081, help="port (default 8081; 0 picks a free one)")
+    p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
+                   help="another name browsers use for this server (e.g. robot.local); requests naming any "
+                        "other host are refused (DNS rebinding)")
     p.add_argument("--speed", type=float, default=None,
                    help="dry: clock seconds per wall second; sim: cap on sim seconds per wall second "
                         "(default 1: real time, to watch; 0: as fast as possible)")
@@ -70,7 +73,7 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
     from .markers import MarkerStore
     from .security import Guard
 
-    guard = Guard.for_host(args.host)
+    guard = Guard.for_host(args.host, listener.getsockname()[1], tuple(args.allow_host))
     control, hub, markers_file, what = _robot(args)
     map_file = MapFile.load(default_map())
     parts = WebParts(hub=hub, guard=guard, control=control, map=map_file,

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..gesture_cli import GROUPS, joint_limits
 
-FILE_NAME = re.compile(r"^[a-z0-9][a-z0-9_\-]{0,39}$")
+FILE_NAME = re.compile(r"[a-z0-9][a-z0-9_\-]{0,39}")  # used with fullmatch: "$" would let a trailing newline in
 
 
 class GestureDeskError(ValueError):
@@ -49,7 +49,7 @@ class GestureFolder:
         self.folder = Path(folder)
 
     def path_for(self, name: str) -> Path:
-        if not isinstance(name, str) or not FILE_NAME.match(name):
+        if not isinstance(name, str) or not FILE_NAME.fullmatch(name):
             raise GestureDeskError([f"gesture name {name!r} must be lower-case letters, digits, '_' or '-' "
                                     "(at most 40, e.g. 'big_wave')"])
         return self.folder / f"{name}.json"
@@ -57,7 +57,7 @@ class GestureFolder:
     def names(self) -> list[str]:
         if not self.folder.is_dir():
             return []
-        return sorted(p.stem for p in self.folder.glob("*.json") if FILE_NAME.match(p.stem))
+        return sorted(p.stem for p in self.folder.glob("*.json") if FILE_NAME.fullmatch(p.stem))
 
     def save(self, name: str, keyframes: Any) -> Path:
         from ..skills.gesture.backend import Keyframe

@@ -27,7 +27,7 @@ from typing import Any, Callable
 from ..suggest import did_you_mean
 from ..jsonfile import to_json
 
-NAME_RULE = re.compile(r"^[a-z][a-z0-9_]{0,39}$")
+NAME_RULE = re.compile(r"[a-z][a-z0-9_]{0,39}")  # used with fullmatch: "$" would let a trailing newline in
 DISPLAY_MAX = 60
 OPS = ("add", "update", "rename", "delete")
 
@@ -154,7 +154,7 @@ def _version(raw: bytes) -> str:
 
 
 def _name(value: Any) -> str:
-    if not isinstance(value, str) or not NAME_RULE.match(value):
+    if not isinstance(value, str) or not NAME_RULE.fullmatch(value):
         raise MarkerEditError(f"marker name {value!r} must be lower-case letters, digits and '_', starting with "
                               "a letter, at most 40 characters (e.g. 'coffee_machine')")
     return value
