@@ -24,6 +24,7 @@ import pytest
 
 FAKE = Path(__file__).parent / "fakes" / "unitree_services.py"
 DOMAINS = range(160, 230)
+SYNC_TIMEOUT = 30.0  # wall seconds for the fake to answer a ping behind the records it owes (a loaded machine)
 START_TIMEOUT = 60.0  # wall seconds for the fake to answer on its own services (a loaded machine)
 _start = itertools.count((os.getpid() * 7) % len(DOMAINS))
 
@@ -98,7 +99,8 @@ class FakeRobot:
         self._pings += 1
         n, mark = self._pings, len(self.records)
         self.order(ping=n)
-        self.wait_for(lambda r: r["kind"] == "pong" and r["n"] == n, what="the fake's pong", since=mark)
+        self.wait_for(lambda r: r["kind"] == "pong" and r["n"] == n, timeout=SYNC_TIMEOUT, what="the fake's pong",
+                      since=mark)
 
     def rpc(self, service: str | None = None, api: int | None = None) -> list[dict[str, Any]]:
         """Requests the fake answered (up to now: synced first)."""
