@@ -260,10 +260,10 @@ def test_garbage_from_a_daemon_is_a_warning_and_is_otherwise_ignored(make, recor
     poll_at_20hz(sup, lambda: loco.state.get("seq", 0) >= 3)
     warnings = [e.data["message"] for e in recorder.of_kind("warning")]
     assert len(warnings) == 4
-    assert "not protocol JSON" in warnings[0] and "Vendor SDK" in warnings[0]
+    assert "not protocol" in warnings[0] and "Vendor SDK" in warnings[0]
     assert "expected a JSON object, got list" in warnings[1]
     assert "unknown type 'mystery'" in warnings[2]
-    assert "not protocol JSON" in warnings[3]
+    assert "not protocol" in warnings[3]
     assert sup.phase("loco") == "ready"
 
 
