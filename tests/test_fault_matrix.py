@@ -176,7 +176,7 @@ def test_bad_numbers_in_a_reply_fail_that_request_and_never_reach_the_world(supe
     assert "'x' must be a finite number, got 'abc'" in reasons[0] or "x must be a finite number" in reasons[0]
     assert "NaN is not a number" in reasons[1]
     assert "Infinity is not a number" in reasons[2]
-    assert "1e400 is not a number" in reasons[3]
+    assert "too large for a float" in reasons[3]
     assert sup.phase("loco") == "ready"
 
 

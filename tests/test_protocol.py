@@ -276,7 +276,7 @@ def test_deep_nesting_is_refused_before_the_parser_recurses(depth, bracket):
     (b'{"a": ' + b"[" * 100_000 + b"]" * 100_000 + b"}", "nested deeper than 32 levels"),
     (b'{"x": NaN}', "NaN is not a number"),
     (b'{"x": -Infinity}', "-Infinity is not a number"),
-    (b'{"x": 1e400}', "1e400 is not a number"),
+    (b'{"x": 1e400}', "too large for a float"),
     (b'{"x": ' + b"9" * 5000 + b"}", "not JSON"),
     (b'{"x": "\\ud800"}', "lone surrogate"),
     (b"\xff\xfe{}", "not UTF-8"),

@@ -95,14 +95,14 @@ def decode(line: bytes | str) -> dict[str, Any]:
     text = _text(line)
     _check_depth(text)
     try:
-        message = json.loads(text, parse_constant=_refuse_constant, parse_float=_finite_float)
+        message = json.loads(text, parse_constant=_refuse_constant)
     except (ValueError, RecursionError) as e:  # JSONDecodeError, and ints past Python's digit limit
         raise ProtocolError(f"not JSON: {e}") from None
     if not isinstance(message, dict):
         if isinstance(message, _NonFinite):
             raise ProtocolError(f"{message.text} is not a number the protocol carries (numbers must be finite)")
         raise ProtocolError(f"expected a JSON object, got {type(message).__name__}")
-    _check_values(message)
+    _check_values(message, _may_hold_surrogates(line, text))
     return message
 
 
@@ -139,26 +139,34 @@ def _refuse_constant(name: str) -> _NonFinite:
     return _NonFinite(name)
 
 
-def _finite_float(text: str) -> float | _NonFinite:
-    value = float(text)
-    return value if math.isfinite(value) else _NonFinite(text[:40])
+def _may_hold_surrogates(line: bytes | str, text: str) -> bool:
+    """Valid UTF-8 bytes decode to no surrogates; only a ``\\uD8xx`` escape (or a str line) can
+    bring one in, so most lines skip the per-string check."""
+    return isinstance(line, str) or "\\ud" in text or "\\uD" in text
 
 
-def _check_values(message: dict[str, Any]) -> None:
-    """Every number finite, every key and string encodable UTF-8 (JSON lets lone surrogates like
-    \\ud800 in; they would break every later write of the event log). Iterative: no recursion."""
+def _check_values(message: dict[str, Any], strings: bool) -> None:
+    """Every number finite (NaN and Infinity arrive as :class:`_NonFinite`, an overflowing
+    literal such as 1e400 as a float infinity) and, if ``strings``, every key and string
+    encodable UTF-8 (JSON lets lone surrogates like \\ud800 in; they would break every later
+    write of the event log). Iterative: no recursion."""
     stack: list[Any] = [message]
     while stack:
         value = stack.pop()
         if isinstance(value, dict):
-            stack.extend(value.keys())
+            if strings:
+                stack.extend(value.keys())
             stack.extend(value.values())
         elif isinstance(value, list):
             stack.extend(value)
+        elif isinstance(value, float):
+            if value - value != 0.0:  # inf - inf and nan - nan are nan: not finite
+                raise ProtocolError("a number too large for a float is not a number the protocol carries "
+                                    "(numbers must be finite)", _id_of(message))
         elif isinstance(value, _NonFinite):
             raise ProtocolError(f"{value.text} is not a number the protocol carries (numbers must be finite)",
                                 _id_of(message))
-        elif isinstance(value, str):
+        elif strings and isinstance(value, str):
             try:
                 value.encode("utf-8")
             except UnicodeEncodeError:
