@@ -208,7 +208,11 @@ class Daemon:
         for line in self._lines.feed(data):
             if self._exiting:
                 return
-            self._handle_line(line)
+            try:
+                self._handle_line(line)
+            except Exception as e:  # a bug in the loop itself must not take the robot's daemon down
+                self._log_exception("handling an input line failed", e)
+                self._send(p.error(None, "bad_request", f"the line could not be handled: {type(e).__name__}: {e}"))
 
     # -- requests ---------------------------------------------------------------------------
 

@@ -30,20 +30,22 @@ class Pose:
         return {"x": round(self.x, 4), "y": round(self.y, 4), "yaw": round(self.yaw, 4)}
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Pose":
-        return cls(float(d.get("x", 0.0)), float(d.get("y", 0.0)), float(d.get("yaw", 0.0)))
+    def from_dict(cls, d: Any) -> "Pose":
+        """A pose from daemon or file data; an absent (or null) axis is 0. A present one that is
+        not a finite number (a string, a bool, NaN, infinity) raises :class:`PoseError` naming the
+        field, so a bad number never becomes the robot's pose."""
+        if not isinstance(d, dict):
+            raise PoseError(f"a pose must be an object with x, y and yaw, got {type(d).__name__}")
+        return cls(_finite(d, "x"), _finite(d, "y"), _finite(d, "yaw"))
 
     @classmethod
     def from_daemon(cls, d: Any) -> "Pose | None":
-        """A pose a daemon reported, or None when it is not one: x, y (and yaw, default 0) must
-        be finite numbers. Daemon output is checked here, at the edge, so a garbled or NaN pose
-        never reaches the world state, the planner or a map."""
-        if not isinstance(d, dict):
+        """:meth:`from_dict`, or None for data that is not a pose (the caller warns and keeps
+        the pose it had): a garbled or NaN pose never reaches the world state."""
+        try:
+            return cls.from_dict(d)
+        except PoseError:
             return None
-        values = [d.get("x"), d.get("y"), d.get("yaw", 0.0)]
-        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values):
-            return None
-        return cls(float(values[0]), float(values[1]), float(values[2]))
 
     @classmethod
     def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> "Pose":
@@ -51,6 +53,25 @@ class Pose:
         and ``left`` metres to the left (REP-103): where to stand to reach or look at it."""
         cos, sin = math.cos(heading), math.sin(heading)
         return cls(x - ahead * cos + left * sin, y - ahead * sin - left * cos, heading)
+
+
+class PoseError(ValueError):
+    """Pose data that is not three finite numbers."""
+
+
+def _finite(d: dict[str, Any], axis: str) -> float:
+    value = d.get(axis)
+    if value is None:
+        return 0.0
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise PoseError(f"pose {axis!r} must be a finite number, got {value!r:.40}")
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        raise PoseError(f"pose {axis!r} must be a finite number, got {value!r:.40}")
+    return number
 
 
 @dataclass(frozen=True)

@@ -199,3 +199,118 @@ def test_encode_makes_one_line_and_decode_reads_it_back():
     assert p.decode(line) == message
     with pytest.raises(p.ProtocolError, match="not JSON"):
         p.decode(b"{nope")
+
+
+# -- the decoder at the boundary: refuses, never crashes (issue 12) ---------------------------
+
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+JSON_VALUES = st.recursive(
+    st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=20),
+    lambda inner: st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=8), inner, max_size=4),
+    max_leaves=30,
+)
+
+
+def _finite_everywhere(value) -> bool:
+    stack = [value]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, float) and item != item or item in (float("inf"), float("-inf")):
+            return False
+        if isinstance(item, dict):
+            stack += list(item.values())
+        elif isinstance(item, list):
+            stack += item
+    return True
+
+
+def _decodes_or_refuses(line) -> None:
+    try:
+        message = p.decode(line)
+    except p.ProtocolError:
+        return
+    assert isinstance(message, dict) and _finite_everywhere(message)
+    try:
+        p.check_daemon_message(message)
+    except p.ProtocolError:
+        pass
+
+
+@FUZZ
+@given(st.binary(max_size=300))
+def test_decode_of_arbitrary_bytes_gives_a_message_or_a_protocol_error(data):
+    _decodes_or_refuses(data)
+
+
+@FUZZ
+@given(st.text(alphabet=st.sampled_from('{}[]",:0123456789.eE-+ abcNaInfity\\u'), max_size=200))
+def test_decode_of_json_like_text_gives_a_message_or_a_protocol_error(text):
+    _decodes_or_refuses(text)
+
+
+@FUZZ
+@given(JSON_VALUES)
+def test_decode_of_any_json_value_never_lets_a_non_finite_number_through(value):
+    line = json.dumps(value, allow_nan=True)  # NaN / Infinity as Python writes them
+    _decodes_or_refuses(line)
+    _decodes_or_refuses(json.dumps({"type": "done", "id": "r1", "result": {"pose": value}}, allow_nan=True))
+
+
+@FUZZ
+@given(st.integers(min_value=1, max_value=3000), st.sampled_from("[{"))
+def test_deep_nesting_is_refused_before_the_parser_recurses(depth, bracket):
+    body = ('{"a":' * depth + "1" + "}" * depth) if bracket == "{" else ("[" * depth + "]" * depth)
+    line = '{"id": "r1", "x": ' + body + "}"
+    if depth + 1 > p.MAX_DEPTH:
+        with pytest.raises(p.ProtocolError, match="nested deeper than"):
+            p.decode(line)
+    else:
+        assert p.decode(line)["id"] == "r1"
+
+
+@pytest.mark.parametrize("line, says", [
+    (b"[" * 300_000, "nested deeper than 32 levels"),
+    (b'{"a": ' + b"[" * 100_000 + b"]" * 100_000 + b"}", "nested deeper than 32 levels"),
+    (b'{"x": NaN}', "NaN is not a number"),
+    (b'{"x": -Infinity}', "-Infinity is not a number"),
+    (b'{"x": 1e400}', "too large for a float"),
+    (b'{"x": ' + b"9" * 5000 + b"}", "not JSON"),
+    (b'{"x": "\\ud800"}', "lone surrogate"),
+    (b"\xff\xfe{}", "not UTF-8"),
+])
+def test_decode_refuses_what_would_crash_or_poison_the_framework(line, says):
+    with pytest.raises(p.ProtocolError, match=says.replace("[", r"\[")):
+        p.decode(line)
+
+
+def test_brackets_inside_strings_do_not_count_as_nesting():
+    text = "[" * 1000 + '"quoted \\" ]' + "{" * 1000
+    assert p.decode(json.dumps({"id": "r1", "text": text})) == {"id": "r1", "text": text}
+
+
+@pytest.mark.parametrize("message, says", [
+    ({"type": "heartbeat", "seq": "1", "state": {}}, "heartbeat: 'seq' must be an integer, got str"),
+    ({"type": "heartbeat", "seq": 1, "state": []}, "heartbeat: 'state' must be an object, got list"),
+    ({"type": "done", "id": "r1", "result": {"pose": {"x": "abc", "y": 0}}}, "pose.x must be a finite number"),
+    ({"type": "progress", "id": "r1", "data": {"pose": {"x": True, "y": 0}}}, "pose.x must be a finite number"),
+    ({"type": "error", "id": "r1", "code": 7, "reason": "x"}, "'code' must be a string, got int"),
+    ({"type": "ready", "family": "loco", "backend": "dry", "pid": True, "protocol": 1, "commands": []},
+     "'pid' must be an integer, got bool"),
+    ({"type": "log", "level": "shout", "message": "x"}, "level 'shout' is not one of"),
+    ({"type": "mystery"}, "unknown type 'mystery'"),
+])
+def test_the_schema_of_each_daemon_message_type_is_checked(message, says):
+    with pytest.raises(p.ProtocolError, match=says.replace("(", r"\(").replace(")", r"\)")) as caught:
+        p.check_daemon_message(message)
+    assert caught.value.request_id == message.get("id")
+
+
+def test_every_message_a_daemon_builds_passes_the_schema():
+    for message in (p.ready("loco", "dry", 1, ["ping"]), p.accepted("r1"), p.accepted("r1", {"duration": 1.0}),
+                    p.progress("r1", {"pose": {"x": 1, "y": 2, "yaw": 0.5}}), p.done("r1"),
+                    p.error(None, "bad_request", "x"), p.error("r1", "stopped", "x", 7, {"pose": {"x": 0, "y": 0}}),
+                    p.heartbeat(1, 0.5, {"pose": {"x": 0.0, "y": 0.0, "yaw": 0.0}}), p.log("info", "hi")):
+        assert p.check_daemon_message(p.decode(p.encode(message))) == message

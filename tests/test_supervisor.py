@@ -260,10 +260,10 @@ def test_garbage_from_a_daemon_is_a_warning_and_is_otherwise_ignored(make, recor
     poll_at_20hz(sup, lambda: loco.state.get("seq", 0) >= 3)
     warnings = [e.data["message"] for e in recorder.of_kind("warning")]
     assert len(warnings) == 4
-    assert "not protocol JSON" in warnings[0] and "Vendor SDK" in warnings[0]
+    assert "not protocol" in warnings[0] and "Vendor SDK" in warnings[0]
     assert "expected a JSON object, got list" in warnings[1]
     assert "unknown type 'mystery'" in warnings[2]
-    assert "not protocol JSON" in warnings[3]
+    assert "not protocol" in warnings[3]
     assert sup.phase("loco") == "ready"
 
 
@@ -300,3 +300,23 @@ def test_a_killed_tree_process_leaves_no_daemon_running(tmp_path):
         time.sleep(0.02)
     log = (tmp_path / "loco.stderr.log").read_text()
     assert "Traceback" not in log
+
+
+def test_bad_line_warnings_are_a_few_in_full_then_one_summary_a_second():
+    from stuart_bt.daemon.limits import FAULTY_LINES, FULL_WARNINGS, BadLineLimiter
+
+    published: list[tuple[str, dict]] = []
+    limiter = BadLineLimiter("loco", lambda message, fields: published.append((message, fields)))
+    for i in range(FULL_WARNINGS + 20):  # 25 bad lines in 2.5 s: chatty, not faulty
+        limiter.report(f"bad line {i}", 100.0 + i * 0.1)
+    assert [m for m, _ in published[:FULL_WARNINGS]] == [f"bad line {i}" for i in range(FULL_WARNINGS)]
+    summaries = published[FULL_WARNINGS:]
+    assert 2 <= len(summaries) <= 3  # one a second, each with its count
+    assert all(f["suppressed"] >= 1 for _, f in summaries) and "last: bad line" in summaries[0][0]
+    limiter.tick(110.0)  # whatever was still held comes out with the next summary
+    assert sum(f["suppressed"] for _, f in published[FULL_WARNINGS:]) == 20  # every line accounted for
+    assert published[-1][1]["total"] == FULL_WARNINGS + 20
+    assert limiter.faulty is None
+    for i in range(FAULTY_LINES):  # a flood: faulty, with the reason
+        limiter.report("flood", 200.0 + i * 0.001)
+    assert limiter.faulty == f"loco daemon sent {FAULTY_LINES} lines that are not protocol within 2 s (limit 200)"

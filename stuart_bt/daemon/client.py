@@ -18,10 +18,10 @@ from typing import Any, Callable
 
 from ..events import EventStream
 from . import protocol as p
+from .limits import BadLineLimiter
 
 SENT, ACCEPTED, DONE, ERROR = "sent", p.ACCEPTED, p.DONE, p.ERROR
 READ_CHUNK = 1 << 16
-WARNINGS_PER_SECOND = 5  # about one daemon's bad output; more in the same second are counted, not sent
 _NOT_EVENT_FIELDS = ("id", "type", "family", "kind", "path")  # taken by the event itself
 
 
@@ -102,8 +102,8 @@ class DaemonClient:
         self._lines = p.LineBuffer()
         self._out = bytearray()
         self._pending: dict[str, Request] = {}
-        self._warn_window, self._warned, self._held_back = float("-inf"), 0, 0  # warning rate limit
         self._down_reason = f"{family} daemon is not started"
+        self._bad_lines = BadLineLimiter(family, self._publish_warning)
 
     # -- connection (the supervisor's side) ---------------------------------------------------
 
@@ -117,6 +117,7 @@ class DaemonClient:
         self._lines = p.LineBuffer()
         self._out.clear()
         self.ready, self.state, self.last_heartbeat, self.eof = None, {}, None, False
+        self._bad_lines = BadLineLimiter(self.family, self._publish_warning)
 
     def detach(self, code: str, reason: str) -> list[Request]:
         """The process is gone: close its pipes and fail every request still in flight."""
@@ -177,9 +178,34 @@ class DaemonClient:
         """Stop everything this daemon is doing; each running request ends with ``stopped``."""
         return self.request(p.STOP)
 
+    def tell_stop(self) -> None:
+        """A last ``stop`` to a daemon about to be killed: written if the pipe takes it, never
+        waited for (nobody will read the answer), published as a command like any other."""
+        if self._write_fd is None:
+            return
+        request_id = f"{self._prefix}{next(self._ids)}"
+        self.events.publish("command", None, family=self.family, id=request_id, cmd=p.STOP, args={})
+        self._out += p.encode(p.request(request_id, p.STOP))
+        self.flush()
+
     @property
     def in_flight(self) -> list[Request]:
         return list(self._pending.values())
+
+    def oldest_unanswered(self) -> Request | None:
+        """The earliest request the daemon has not answered at all (no accepted, done or error):
+        a daemon that heartbeats but never takes its commands is found through this."""
+        waiting = [r for r in self._pending.values() if r.status == SENT]
+        return min(waiting, key=lambda r: r.sent_at) if waiting else None
+
+    @property
+    def faulty(self) -> str | None:
+        """Why this daemon's output is beyond saving (a flood of bad lines), else None."""
+        return self._bad_lines.faulty
+
+    def tick(self, now: float) -> None:
+        """Time passes: publish the summary of bad lines whose warnings were held back."""
+        self._bad_lines.tick(now)
 
     # -- I/O ----------------------------------------------------------------------------------
 
@@ -212,17 +238,19 @@ class DaemonClient:
 
     def _handle(self, line: bytes | p.Oversize) -> None:
         if isinstance(line, p.Oversize):
-            self._warn(f"{self.family} daemon sent a line of {line.size}+ bytes (limit {p.MAX_LINE}); ignored")
+            self._bad_line(f"{self.family} daemon sent a line of {line.size}+ bytes (limit {p.MAX_LINE}); ignored")
             return
         try:
-            message = p.decode(line)
+            message = p.check_daemon_message(p.decode(line))
         except p.ProtocolError as e:
-            self._warn(f"{self.family} daemon sent a line that is not protocol JSON ({e.reason}): {line[:120]!r}")
+            request = self._pending.get(e.request_id) if e.request_id is not None else None
+            if request is not None:  # a malformed reply still ends its request, with the reason
+                self._end_malformed(request, e.reason)
+            self._bad_line(f"{self.family} daemon sent a line that is not protocol ({e.reason}): {line[:120]!r}")
             return
-        kind = message.get("type")
+        kind = message["type"]
         if kind == p.HEARTBEAT:
-            state = message.get("state")
-            self.state = state if isinstance(state, dict) else {}
+            self.state = message["state"]
             self.last_heartbeat = time.monotonic()
             for listener in self.state_listeners:
                 listener(self.state)
@@ -232,24 +260,28 @@ class DaemonClient:
             self.ready = message
             self.last_heartbeat = time.monotonic()
         elif kind == p.LOG:
-            self.events.publish("log", family=self.family, level=str(message.get("level", "info")),
-                                message=str(message.get("message", "")))
-        else:
-            self._warn(f"{self.family} daemon sent a message of unknown type {kind!r}: {line[:120]!r}")
+            self.events.publish("log", family=self.family, level=message["level"], message=message["message"])
 
     def _reply(self, message: dict[str, Any]) -> None:
         request_id = message.get("id")
         request = self._pending.get(request_id) if isinstance(request_id, str) else None
-        fields = {k: v for k, v in message.items() if k not in _NOT_EVENT_FIELDS}
-        self.events.publish("daemon", request.path if request else None, family=self.family, type=message["type"],
-                            id=request_id, **fields)
-        if request is None:
-            if message["type"] == p.ERROR:
-                self._warn(f"{self.family} daemon rejected a line: {message.get('code')}: {message.get('reason')}")
+        if request is None:  # not ours (any more): counted like a bad line, so a flood stays cheap
+            what = (f"rejected a line: {message.get('code')}: {message.get('reason')}" if message["type"] == p.ERROR
+                    else f"sent a {message['type']} for no running request ({request_id!r})")
+            self._bad_line(f"{self.family} daemon {what}")
             return
+        fields = {k: v for k, v in message.items() if k not in _NOT_EVENT_FIELDS}
+        self.events.publish("daemon", request.path, family=self.family, type=message["type"], id=request_id,
+                            **fields)
         request.apply(message)
         if request.finished:
             del self._pending[request.id]
+
+    def _end_malformed(self, request: Request, reason: str) -> None:
+        """A reply to ``request`` that breaks the protocol (a bad number, a wrong type): the
+        request fails ``backend_error`` at once, rather than waiting out a timeout."""
+        del self._pending[request.id]
+        self._fail(request, "backend_error", f"{self.family} daemon sent a malformed reply to {request.id}: {reason}")
 
     def _fail(self, request: Request, code: str, reason: str) -> None:
         """End a request on the framework's side, published like a daemon error reply."""
@@ -257,18 +289,11 @@ class DaemonClient:
         self.events.publish("daemon", request.path, family=self.family, type=p.ERROR, id=request.id, code=code,
                             reason=reason)
 
+    def _bad_line(self, message: str) -> None:
+        self._bad_lines.report(message, time.monotonic())
+
     def _warn(self, message: str) -> None:
-        """A warning about this daemon's output, at most WARNINGS_PER_SECOND a second: a daemon
-        that babbles must not flood the event stream (and the report, the log, the views and the
-        ROS bridge behind it). What was held back is counted in the next warning that goes out."""
-        now = time.monotonic()
-        if now - self._warn_window >= 1.0:
-            self._warn_window, self._warned = now, 0
-        if self._warned >= WARNINGS_PER_SECOND:
-            self._held_back += 1
-            return
-        self._warned += 1
-        if self._held_back:
-            message += f" ({self._held_back} more like it were not reported)"
-            self._held_back = 0
-        self.events.publish("warning", family=self.family, message=message)
+        self._publish_warning(message, {})
+
+    def _publish_warning(self, message: str, fields: dict[str, Any]) -> None:
+        self.events.publish("warning", family=self.family, message=message, **fields)

@@ -16,7 +16,7 @@ from ..jsonfile import nesting_depth, to_json
 
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
-MAX_DEPTH = 32  # nesting of objects and arrays in one line; deeper lines are refused before parsing
+MAX_DEPTH = 32  # nesting of objects and arrays in one message; deeper lines are refused unparsed
 
 # Message types (the "type" field of every daemon -> framework line).
 READY = "ready"
@@ -53,10 +53,12 @@ ERROR_CODES: dict[str, str] = {
     "already_holding": "pick asked for, but the robot already holds something",
     "backend_error": "the backend (simulator, vendor SDK) failed; vendor_code may say more",
     "daemon_died": "framework side: the daemon process exited with the request in flight",
-    "daemon_hung": "framework side: the daemon stopped sending heartbeats",
+    "daemon_hung": "framework side: the daemon stopped sending heartbeats or answering commands",
+    "daemon_faulty": "framework side: the daemon flooded its output with lines that are not protocol",
     "daemon_down": "framework side: the daemon is not running (restarting or shut down)",
 }
-FRAMEWORK_CODES = ("daemon_died", "daemon_hung", "daemon_down")
+FRAMEWORK_CODES = ("daemon_died", "daemon_hung", "daemon_faulty", "daemon_down")
+LOG_LEVELS = ("debug", "info", "warning", "error")
 
 
 class ProtocolError(ValueError):
@@ -77,36 +79,91 @@ def encode(message: dict[str, Any]) -> bytes:
     return (to_json(message, separators=(",", ":"), ensure_ascii=False) + "\n").encode()
 
 
+
+
 def decode(line: bytes | str) -> dict[str, Any]:
     """Parse one line (without or with its newline) into a message object.
 
-    Refused with :class:`ProtocolError`, never another exception: a line over MAX_LINE, nesting
-    deeper than MAX_DEPTH (checked before parsing, since Python's parser recurses), anything that
-    is not JSON, and NaN or infinite numbers (``NaN``, ``Infinity``, ``1e999``), which JSON does
-    not have and which would poison the world state."""
+    The one gate every line passes, both directions: anything a peer can send either comes back
+    as a dict of finite numbers and valid strings or raises :class:`ProtocolError` (nothing
+    else). Size and nesting are checked before the JSON parser runs, so its recursion can never
+    be reached by a deep line; NaN, Infinity and numbers that overflow a float are refused.
+    """
     if len(line) > MAX_LINE + 1:
         raise ProtocolError(f"line of {len(line)} bytes is longer than the {MAX_LINE}-byte limit")
-    raw = line.encode("utf-8", "surrogatepass") if isinstance(line, str) else line
-    if nesting_depth(raw, MAX_DEPTH) > MAX_DEPTH:
-        raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
+    text = _text(line)
+    _check_depth(text)
     try:
-        message = json.loads(raw, parse_constant=_refuse_constant, parse_float=_finite_float)
-    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as e:
+        message = json.loads(text, parse_constant=_refuse_constant)
+    except (ValueError, RecursionError) as e:  # JSONDecodeError, and ints past Python's digit limit
         raise ProtocolError(f"not JSON: {e}") from None
     if not isinstance(message, dict):
+        if isinstance(message, _NonFinite):
+            raise ProtocolError(f"{message.text} is not a number the protocol carries (numbers must be finite)")
         raise ProtocolError(f"expected a JSON object, got {type(message).__name__}")
+    _check_values(message, _may_hold_surrogates(line, text))
     return message
 
 
-def _refuse_constant(name: str) -> float:
-    raise ProtocolError(f"{name} is not a JSON number")
+def _text(line: bytes | str) -> str:
+    if isinstance(line, str):
+        return line
+    try:
+        return bytes(line).decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ProtocolError(f"not JSON: not UTF-8 ({e.reason} at byte {e.start})") from None
 
 
-def _finite_float(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value):
-        raise ProtocolError(f"{text} is out of range for a number")
-    return value
+def _check_depth(text: str) -> None:
+    """Refuse nesting deeper than :data:`MAX_DEPTH` without recursion (stuart_bt.jsonfile)."""
+    if nesting_depth(text, MAX_DEPTH) > MAX_DEPTH:
+        raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
+
+
+class _NonFinite:
+    """Stands in for NaN, Infinity or an overflowing number while parsing, so the refusal can
+    name the request the line belonged to (the parser's hooks cannot see the id)."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+
+
+def _refuse_constant(name: str) -> _NonFinite:
+    return _NonFinite(name)
+
+
+def _may_hold_surrogates(line: bytes | str, text: str) -> bool:
+    """Valid UTF-8 bytes decode to no surrogates; only a ``\\uD8xx`` escape (or a str line) can
+    bring one in, so most lines skip the per-string check."""
+    return isinstance(line, str) or "\\ud" in text or "\\uD" in text
+
+
+def _check_values(message: dict[str, Any], strings: bool) -> None:
+    """Every number finite (NaN and Infinity arrive as :class:`_NonFinite`, an overflowing
+    literal such as 1e400 as a float infinity) and, if ``strings``, every key and string
+    encodable UTF-8 (JSON lets lone surrogates like \\ud800 in; they would break every later
+    write of the event log). Iterative: no recursion."""
+    stack: list[Any] = [message]
+    while stack:
+        value = stack.pop()
+        if isinstance(value, dict):
+            if strings:
+                stack.extend(value.keys())
+            stack.extend(value.values())
+        elif isinstance(value, list):
+            stack.extend(value)
+        elif isinstance(value, float):
+            if value - value != 0.0:  # inf - inf and nan - nan are nan: not finite
+                raise ProtocolError("a number too large for a float is not a number the protocol carries "
+                                    "(numbers must be finite)", _id_of(message))
+        elif isinstance(value, _NonFinite):
+            raise ProtocolError(f"{value.text} is not a number the protocol carries (numbers must be finite)",
+                                _id_of(message))
+        elif strings and isinstance(value, str):
+            try:
+                value.encode("utf-8")
+            except UnicodeEncodeError:
+                raise ProtocolError("a string holds a lone surrogate (not valid UTF-8)", _id_of(message)) from None
 
 
 def parse_request(message: dict[str, Any]) -> tuple[str, str, dict[str, Any]]:
@@ -123,6 +180,130 @@ def parse_request(message: dict[str, Any]) -> tuple[str, str, dict[str, Any]]:
     if not isinstance(args, dict):
         raise ProtocolError(f"'args' must be an object, got {type(args).__name__}", request_id)
     return request_id, cmd, args
+
+
+def check_daemon_message(message: dict[str, Any]) -> dict[str, Any]:
+    """The schema of a daemon -> framework line (docs/protocol.md): its type, its fields' types,
+    and every ``pose`` object in it (finite x, y, yaw), so nothing malformed reaches the leaves
+    or the world state. Returns the message; raises :class:`ProtocolError`."""
+    kind = message.get("type")
+    check = _SCHEMAS.get(kind) if isinstance(kind, str) else None
+    if check is None:
+        raise ProtocolError(f"message of unknown type {kind!r}", _id_of(message))
+    try:
+        check(message)
+        _check_poses(message)
+    except ProtocolError as e:
+        raise ProtocolError(f"{kind}: {e.reason}", _id_of(message)) from None
+    return message
+
+
+def _id_of(message: dict[str, Any]) -> str | None:
+    request_id = message.get("id")
+    return request_id if isinstance(request_id, str) else None
+
+
+def _field(message: dict[str, Any], name: str, types: type | tuple[type, ...], optional: bool = False) -> None:
+    if name not in message:
+        if optional:
+            return
+        raise ProtocolError(f"missing {name!r}")
+    value = message[name]
+    if isinstance(value, bool) and bool not in (types if isinstance(types, tuple) else (types,)):
+        raise ProtocolError(f"{name!r} must be {_names(types)}, got bool")
+    if not isinstance(value, types):
+        raise ProtocolError(f"{name!r} must be {_names(types)}, got {type(value).__name__}")
+
+
+def _names(types: type | tuple[type, ...]) -> str:
+    names = {dict: "an object", str: "a string", int: "an integer", float: "a number", list: "a list",
+             type(None): "null"}
+    return " or ".join(dict.fromkeys(names[t] for t in (types if isinstance(types, tuple) else (types,))))
+
+
+def _check_ready(m: dict[str, Any]) -> None:
+    for name, types in (("family", str), ("backend", str), ("pid", int), ("protocol", int), ("commands", list)):
+        _field(m, name, types)
+    if not all(isinstance(c, str) for c in m["commands"]):
+        raise ProtocolError("'commands' must be a list of strings")
+
+
+def _check_reply(m: dict[str, Any], body: str, optional: bool) -> None:
+    _field(m, "id", str)
+    _field(m, body, dict, optional)
+
+
+def _check_error(m: dict[str, Any]) -> None:
+    _field(m, "id", (str, type(None)))
+    _field(m, "code", str)
+    _field(m, "reason", str)
+    _field(m, "vendor_code", (int, type(None)), optional=True)
+    _field(m, "data", (dict, type(None)), optional=True)
+
+
+def _check_heartbeat(m: dict[str, Any]) -> None:
+    _field(m, "seq", int)
+    _field(m, "t", (int, float), optional=True)
+    _field(m, "state", dict)
+
+
+def _check_log(m: dict[str, Any]) -> None:
+    _field(m, "level", str)
+    _field(m, "message", str)
+    if m["level"] not in LOG_LEVELS:
+        raise ProtocolError(f"level {m['level']!r} is not one of {', '.join(LOG_LEVELS)}")
+
+
+_SCHEMAS = {
+    READY: _check_ready,
+    ACCEPTED: lambda m: _check_reply(m, "data", True),
+    PROGRESS: lambda m: _check_reply(m, "data", True),
+    DONE: lambda m: _check_reply(m, "result", True),
+    ERROR: _check_error,
+    HEARTBEAT: _check_heartbeat,
+    LOG: _check_log,
+}
+POSE_KEYS = ("pose", "robot_pose")  # objects under these keys are map poses wherever they appear
+
+
+def _check_poses(message: dict[str, Any]) -> None:
+    """Every ``pose``/``robot_pose`` in a daemon message is ``{x, y, yaw}`` of finite numbers
+    (iterative walk; depth is already bounded by :func:`decode`)."""
+    stack: list[Any] = [message]
+    while stack:
+        value = stack.pop()
+        if isinstance(value, dict):
+            for key, inner in value.items():
+                if key in POSE_KEYS and inner is not None:
+                    check_pose(inner, key)
+            stack.extend(value.values())
+        elif isinstance(value, list):
+            stack.extend(value)
+
+
+def check_pose(value: Any, what: str = "pose") -> dict[str, Any]:
+    """``value`` as a map pose: an object whose x and y (and yaw, if given and not null) are
+    finite numbers. Raises :class:`ProtocolError` naming the bad field."""
+    if not isinstance(value, dict):
+        raise ProtocolError(f"{what} must be an object, got {type(value).__name__}")
+    for axis in ("x", "y", "yaw"):
+        if axis == "yaw" and value.get("yaw") is None:
+            continue
+        if axis not in value:
+            raise ProtocolError(f"{what} has no {axis!r}")
+        if not is_finite_number(value[axis]):
+            raise ProtocolError(f"{what}.{axis} must be a finite number, got {value[axis]!r:.40}")
+    return value
+
+
+def is_finite_number(value: Any) -> bool:
+    """An int or float (not bool) that converts to a finite float."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:
+        return False
 
 
 def request(request_id: str, cmd: str, args: dict[str, Any] | None = None) -> dict[str, Any]:

@@ -280,29 +280,55 @@ class Supervisor:
 
     def _check(self, d: _Daemon, now: float) -> None:
         if d.phase == "down":
-            if d.restart_at is not None and now >= d.restart_at:
-                try:
-                    self._spawn(d)
-                except DaemonStartError as e:
-                    delay = self._schedule_restart(d, now)
-                    self.events.publish("daemon_state", family=d.family, state="died", reason=str(e), failed=[],
-                                        restart_in=delay)
+            self._restart_if_due(d, now)
             return
         if d.phase not in ("starting", "ready"):
             return
-        if d.client.eof or d.proc.poll() is not None:
-            self._lose(d, "daemon_died", "died", f"{d.family} daemon {self._exit_reason(d)}", now)
-        elif d.phase == "starting":
-            if d.client.ready:
-                self._mark_ready(d, now)
-            elif now - d.spawned_at > self.handshake_timeout:
-                self._lose(d, "daemon_hung", "hung",
-                           f"{d.family} daemon sent no READY within {self.handshake_timeout} s", now)
-        elif now - (d.client.last_heartbeat or d.ready_at) > self.heartbeat_timeout:
-            self._lose(d, "daemon_hung", "hung",
-                       f"{d.family} daemon sent no heartbeat for {self.heartbeat_timeout} s", now)
-        elif d.failures and now - d.ready_at > self.restart_backoff[1]:
+        d.client.tick(now)
+        if d.phase == "starting" and d.client.ready and not d.client.eof:
+            self._mark_ready(d, now)
+        loss = self._loss(d, now)
+        if loss is not None:
+            self._lose(d, *loss, now)
+        elif d.phase == "ready" and d.failures and now - d.ready_at > self.restart_backoff[1]:
             d.failures = 0  # up long enough: the next loss starts the backoff afresh
+
+    def _restart_if_due(self, d: _Daemon, now: float) -> None:
+        if d.restart_at is None or now < d.restart_at:
+            return
+        try:
+            self._spawn(d)
+        except DaemonStartError as e:
+            delay = self._schedule_restart(d, now)
+            self.events.publish("daemon_state", family=d.family, state="died", reason=str(e), failed=[],
+                                restart_in=delay)
+
+    def _loss(self, d: _Daemon, now: float) -> tuple[str, str, str] | None:
+        """``(error code, state, reason)`` if the daemon is lost: exited, never ready, flooding,
+        silent, or not answering its commands; None while it is healthy."""
+        if d.client.eof or d.proc.poll() is not None:
+            return "daemon_died", "died", f"{d.family} daemon {self._exit_reason(d)}"
+        if d.phase == "starting":
+            if now - d.spawned_at > self.handshake_timeout:
+                return "daemon_hung", "hung", f"{d.family} daemon sent no READY within {self.handshake_timeout} s"
+            return None
+        if d.client.faulty:
+            return "daemon_faulty", "faulty", d.client.faulty
+        if now - (d.client.last_heartbeat or d.ready_at) > self.heartbeat_timeout:
+            return "daemon_hung", "hung", f"{d.family} daemon sent no heartbeat for {self.heartbeat_timeout} s"
+        unanswered = self._unanswered(d, now)
+        return ("daemon_hung", "hung", unanswered) if unanswered is not None else None
+
+    def _unanswered(self, d: _Daemon, now: float) -> str | None:
+        """The rule for a daemon that heartbeats but does not take its commands: every request
+        gets its first reply (accepted, done or error) within ``heartbeat_timeout`` of being sent
+        (or of READY, for one sent while the daemon started). Commands validate and start inside
+        the loop that heartbeats, so a healthy daemon never needs longer."""
+        oldest = d.client.oldest_unanswered()
+        if oldest is None or now - max(oldest.sent_at, d.ready_at) <= self.heartbeat_timeout:
+            return None
+        return (f"{d.family} daemon did not answer {oldest.id} ({oldest.cmd}) within {self.heartbeat_timeout} s "
+                f"though it still heartbeats")
 
     def _mark_ready(self, d: _Daemon, now: float) -> None:
         d.phase, d.ready_at = "ready", now
@@ -311,8 +337,11 @@ class Supervisor:
                             pid=ready.get("pid"), backend=ready.get("backend"), commands=ready.get("commands"))
 
     def _lose(self, d: _Daemon, code: str, state: str, reason: str, now: float) -> None:
-        """The daemon crashed or hung: fail its requests, kill what is left, schedule a restart."""
+        """The daemon crashed or hung: fail its requests, kill what is left, schedule a restart.
+        A live one is first told to stop (best effort: one line into its stdin, never blocking),
+        so a daemon that still reads stops the robot before it is killed."""
         if d.proc.poll() is None:
+            d.client.tell_stop()
             _signal_group(d.proc, signal.SIGKILL)
             self._zombies.append(d.proc)
         failed = self._disconnect(d, code, reason)

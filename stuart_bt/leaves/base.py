@@ -226,7 +226,12 @@ class SkillLeaf(Leaf):
             return Status.FAILURE
         if request.status == "done":
             self.result = dict(request.result or {})
-            self.on_done(self.result)
+            try:
+                self.on_done(self.result)
+            except (ValueError, TypeError, KeyError) as e:  # a result the world state cannot take in
+                self.failure_reason = f"bad_result: {self.family} daemon's result for {request.id} is unusable: {e}"
+                self.result = {}
+                return Status.FAILURE
             return Status.SUCCESS
         if not self.wait_for_completion and request.status == "accepted":
             return Status.SUCCESS

@@ -38,9 +38,8 @@ class Navigate(SkillLeaf):
 
     def on_done(self, result: dict[str, Any]) -> None:
         world = self.ctx.blackboard.world
-        pose = Pose.from_daemon(result.get("pose"))
-        if pose is not None:  # a garbled pose is not taken (the runner warns about the daemon's lines)
-            world.pose = pose
+        if "pose" in result:  # a pose that is not finite numbers raises: the leaf fails with bad_result
+            world.pose = Pose.from_dict(result["pose"])
         if result.get("marker"):
             world.last_marker = result["marker"]
 
@@ -83,6 +82,5 @@ class Turn(SkillLeaf):
         return "turn", {"angle": angle}
 
     def on_done(self, result: dict[str, Any]) -> None:
-        pose = Pose.from_daemon(result.get("pose"))
-        if pose is not None:
-            self.ctx.blackboard.world.pose = pose
+        if "pose" in result:
+            self.ctx.blackboard.world.pose = Pose.from_dict(result["pose"])

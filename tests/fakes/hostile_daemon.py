@@ -1,5 +1,5 @@
 """A daemon that says READY and then sends everything a broken or hostile program could: a line
-nested 300,000 deep, NaN and infinite numbers, a pose of strings, and a flood of garbage, with
+nested 300,000 deep, NaN and infinite numbers, a pose of strings, and a stream of garbage, with
 good heartbeats in between. No real daemon can be made to (their stdout is private to the
 protocol), so this is how the framework's edge is shown to refuse it all and carry on.
 """
@@ -17,7 +17,7 @@ out.write(b'{"type": "heartbeat", "seq": 0, "state": {"pose": {"x": NaN, "y": 0,
 out.write(b'{"type": "heartbeat", "seq": 0, "state": {"pose": {"x": 1e999, "y": 0, "yaw": 0}}}\n')
 out.write(b'{"type": "heartbeat", "seq": 0, "state": {"pose": {"x": Infinity, "y": 0, "yaw": 0}}}\n')
 out.write(b'{"type": "heartbeat", "seq": 0, "state": {"pose": {"x": "abc", "y": 0, "yaw": 0}}}\n')
-for k in range(5000):
+for k in range(150):  # under the flood bound (stuart_bt.daemon.limits.FAULTY_LINES): refused, not restarted
     out.write(b"garbage line %d from a babbling vendor library\n" % k)
 out.flush()
 seq = 0
