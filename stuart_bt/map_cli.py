@@ -63,6 +63,8 @@ def map_request(action: str, path: str | None, pose: str) -> dict[str, Any]:
 
 
 def cmd_map(args: argparse.Namespace) -> int:
+    import tempfile
+
     from .cli import EXIT_FAILED, EXIT_OK
     from .clock import ScaledClock
     from .daemon.supervisor import Supervisor
@@ -75,8 +77,10 @@ def cmd_map(args: argparse.Namespace) -> int:
     if args.domain is not None:
         options["domain"] = args.domain
     clock = ScaledClock(1.0)
-    with Supervisor("unitree", clock, EventStream(clock), families=("loco",), options={"loco": options},
-                    handshake_timeout=30.0) as supervisor:
+    # the daemon's log folder goes with the command: a one-shot request leaves nothing in /tmp
+    with tempfile.TemporaryDirectory(prefix="stuart_bt-daemons-") as run_dir, \
+            Supervisor("unitree", clock, EventStream(clock), families=("loco",), options={"loco": options},
+                       handshake_timeout=30.0, run_dir=run_dir) as supervisor:
         command = ACTIONS[args.action][0]
         request = supervisor.wait(supervisor.client("loco").request(command, request_args), timeout=args.timeout)
     if request.ok:

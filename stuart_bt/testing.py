@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from importlib import resources
@@ -528,6 +529,9 @@ def run_tree(
         world = session.blackboard.world.to_dict()
     finally:
         session.close()
+        # the runner keeps a failed run's log folder for a reader; here the RunResult is what a
+        # test reads, and a kept folder per run would pile up in /tmp
+        shutil.rmtree(session.run_dir, ignore_errors=True)
     return RunResult(outcome, report, world, initial, final, live.timeline)
 
 

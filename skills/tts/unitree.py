@@ -123,6 +123,13 @@ class UnitreeTts(DryTts):
         self.lead = vendor.startup_option(lambda: a.number(options, "lead_seconds", where, default=1.0, minimum=0.0))
         self.streams = 0
         self._audio_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-robot-audio-"))
+        try:
+            self._connect(options, where)
+        except BaseException:
+            self.close()  # a daemon that does not start leaves no audio folder behind
+            raise
+
+    def _connect(self, options: dict[str, Any], where: str) -> None:
         local = "espeak-ng" if self.engine == "robot" else self.engine
         try:
             self.synth = Synthesizer(self._audio_dir, "auto" if self.engine == "robot" else local,
