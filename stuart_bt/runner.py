@@ -15,6 +15,7 @@ import json
 import math
 import shutil
 import signal
+import sys
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,6 +72,7 @@ class Session:
         self.clock = clock or ScaledClock(dry_speed)  # the sim backend swaps in the world's clock
         self.events = events or EventStream(self.clock)
         self.recorder = ReportBuilder(self.events)
+        self.events.subscribe(self._note_trouble)
         self.blackboard = Blackboard(self.events, spec.blackboard)
         self.supervisor: Supervisor | None = None
         self.world: Any = None  # the simulator's WorldProcess (sim backend)
@@ -78,6 +80,7 @@ class Session:
         self.outcome: RunOutcome | None = None
         self._hurry = False
         self._last_bad_pose_warning = float("-inf")
+        self._trouble: str | None = None  # the first daemon that died, hung or babbled: keep the logs
         self.lost: str | None = None  # why the run cannot go on (its world died), once it cannot
         self.run_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-run-"))  # daemon and world logs
         self._log_file: IO[str] | None = None
@@ -149,6 +152,11 @@ class Session:
         self.clock = self.world.clock(driver=True)
         self.events.clock = self.clock
 
+    def _note_trouble(self, event: Event) -> None:
+        if self._trouble is None and event.kind == "daemon_state" and \
+                event.data.get("state") in ("died", "hung", "faulty"):
+            self._trouble = f"{event.data.get('family')} daemon {event.data.get('state')}"
+
     def _check_world(self, executor: Executor) -> None:
         """The world server is the run's physics and clock: when it dies the run cannot go on.
         Checked before every tick (a ``waitpid`` that does not block), so the tree stops on the
@@ -213,8 +221,11 @@ class Session:
                 self._draw_map(self.options.map_out)
             self.world.close()
             self._world_log.close()
-        if self.outcome is not None and self.outcome.status == "SUCCESS":
-            shutil.rmtree(self.run_dir, ignore_errors=True)  # logs are kept when something went wrong
+        if self._trouble is None and self.lost is None:
+            shutil.rmtree(self.run_dir, ignore_errors=True)
+        else:  # a daemon or the world failed: its log says why, so it is kept, and the user told where
+            print(f"stuart-bt: daemon and world logs kept in {self.run_dir} ({self.lost or self._trouble})",
+                  file=sys.stderr)
         if self._log_writer is not None:
             self._log_writer.close()
         if self._log_file is not None:

@@ -83,6 +83,8 @@ class Run:
     def world(self) -> int:
         """The world server's pid, once it and the daemons are up (the tour has started walking)."""
         def up() -> bool:
+            if self.proc.poll() is not None:
+                raise AssertionError(f"the run ended before its world started: {self.proc.stderr.read()[-800:]}")
             self.started = _children(self.proc.pid)
             return any("stuart_bt.sim.world" in c for c in self.started.values()) and \
                 any("stuart_bt.skills.loco" in c for c in self.started.values())
