@@ -72,6 +72,7 @@ class Session:
         self.clock = clock or ScaledClock(dry_speed)  # the sim backend swaps in the world's clock
         self.events = events or EventStream(self.clock)
         self.recorder = ReportBuilder(self.events)
+        self._trouble: str | None = None  # the first daemon that died, hung or babbled: keep the logs
         self.events.subscribe(self._note_trouble)
         self.blackboard = Blackboard(self.events, spec.blackboard)
         self.supervisor: Supervisor | None = None
@@ -80,7 +81,6 @@ class Session:
         self.outcome: RunOutcome | None = None
         self._hurry = False
         self._last_bad_pose_warning = float("-inf")
-        self._trouble: str | None = None  # the first daemon that died, hung or babbled: keep the logs
         self.lost: str | None = None  # why the run cannot go on (its world died), once it cannot
         self.run_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-run-"))  # daemon and world logs
         self._log_file: IO[str] | None = None
