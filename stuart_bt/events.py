@@ -28,6 +28,7 @@ from __future__ import annotations
 import json
 import threading
 import time
+from collections import deque
 from dataclasses import dataclass, field
 from typing import IO, Any, Callable
 
@@ -108,10 +109,12 @@ class EventStream:
 
 
 class EventRecorder:
-    """Keeps every event in memory (for reports and tests)."""
+    """Keeps the events in memory (for reports and tests): every one, or with ``limit`` the last
+    ``limit`` of them, so a session that runs all day (a mission console, a ROS bridge) holds a
+    bounded history instead of growing with every word it hears."""
 
-    def __init__(self, stream: EventStream | None = None) -> None:
-        self.events: list[Event] = []
+    def __init__(self, stream: EventStream | None = None, limit: int | None = None) -> None:
+        self.events: list[Event] | deque[Event] = [] if limit is None else deque(maxlen=limit)
         self._unsubscribe = stream.subscribe(self.events.append) if stream else None
 
     def close(self) -> None:

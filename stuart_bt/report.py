@@ -17,8 +17,8 @@ from .jsonfile import to_json
 
 
 class ReportBuilder(EventRecorder):
-    def __init__(self, stream: EventStream) -> None:
-        super().__init__(stream)
+    def __init__(self, stream: EventStream, limit: int | None = None) -> None:
+        super().__init__(stream, limit)
 
     def build(self, **summary: Any) -> dict[str, Any]:
         return build_report(self.events, **summary)

@@ -53,6 +53,7 @@ class RunOptions:
     heartbeat_timeout: float = 1.0
     watchdog: float = 2.0  # wall s: a framework silent this long while motion runs leaves a stopped robot
     seed: int = 0  # sim: makes a run repeatable
+    history: int | None = None  # events the report keeps (None: all; a long session keeps the last N)
     record: Path | None = None  # sim: chase-camera video (.mp4 or .gif)
     record_fps: float = 10.0
     viewer: bool = False  # sim: the interactive MuJoCo viewer
@@ -71,7 +72,7 @@ class Session:
         dry_speed = self.options.speed if self.options.speed else 1.0
         self.clock = clock or ScaledClock(dry_speed)  # the sim backend swaps in the world's clock
         self.events = events or EventStream(self.clock)
-        self.recorder = ReportBuilder(self.events)
+        self.recorder = ReportBuilder(self.events, self.options.history)
         self._trouble: str | None = None  # the first daemon that died, hung or babbled: keep the logs
         self.events.subscribe(self._note_trouble)
         self.blackboard = Blackboard(self.events, spec.blackboard)

@@ -42,3 +42,16 @@ def test_a_reply_that_waited_too_long_is_dropped_unsaid():
         said = [e.data["args"]["text"] for e in events if e.kind == "command" and e.data.get("cmd") == "say"]
         assert stale.text not in said
         assert any(e.kind == "log" and "dropped unsaid" in e.data.get("message", "") for e in events)
+
+
+def test_a_long_mission_session_keeps_a_bounded_event_history():
+    from stuart_bt.events import EventRecorder, EventStream
+    from stuart_bt.clock import ManualClock
+
+    stream = EventStream(ManualClock())
+    recorder = EventRecorder(stream, limit=100)
+    for k in range(1000):
+        stream.publish("log", message=f"line {k}")
+    assert len(recorder.events) == 100 and recorder.events[-1].data["message"] == "line 999"
+    with MissionExecutor(MissionOptions(backend="dry", speed=20.0)) as robot:
+        assert robot.session.recorder.events.maxlen == mx.SESSION_HISTORY

@@ -49,6 +49,7 @@ from ..tree.spec import Location, NodeSpec, TreeSpec
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, Conversation, interpret
 from .compiler import CompiledMission, compile_plan
 
+SESSION_HISTORY = 5000  # events a mission session keeps for its report: it may run all day
 MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
 MAX_QUEUED_REPLIES = 2  # replies waiting to be said; a newer one pushes out the oldest
 STALE_REPLY_S = 10.0  # wall seconds a reply may wait for its turn before it answers a moment long gone
@@ -132,7 +133,7 @@ class MissionExecutor:
         self.session = Session(_all_families_spec(str(markers)), RunOptions(
             backend=self.options.backend, rate=self.options.rate, speed=self.options.speed,
             start=self.options.start, log=self.options.log, daemon_options=self.options.daemon_options,
-            seed=self.options.seed))
+            seed=self.options.seed, history=SESSION_HISTORY))
         self.missions: list[Mission] = []
         self.halted: Mission | None = None
         self._queue: deque[Mission | _Say | _Look] = deque()
