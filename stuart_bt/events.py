@@ -35,7 +35,6 @@ from typing import IO, Any, Callable
 from .clock import Clock
 from .jsonfile import to_json
 
-
 ENVELOPE = ("t", "wall", "kind", "path")  # an event's own fields in its flat dict form
 
 

@@ -11,7 +11,6 @@ import stat
 from pathlib import Path
 from typing import Any
 
-
 _STRING = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*"', re.DOTALL)  # a JSON string, escapes included
 _BRACKET = re.compile(r"[\[\]{}]")
 MAX_DATA_FILE = 1 << 20  # bytes: markers, objects and trees are a few kilobytes
@@ -52,6 +51,18 @@ def read_json(path: str | Path, error: type[Exception], what: str) -> Any:
         raise error(f"{path}: {what} {e}") from None
     except (OSError, UnicodeDecodeError, RecursionError) as e:
         raise error(f"{path}: cannot read: {getattr(e, 'strerror', None) or e}") from None
+
+
+def is_finite_number(value: Any) -> bool:
+    """A JSON number that is a real quantity: an int or float (not a bool) that converts to a
+    finite float. Python's JSON reader lets NaN, infinity and ints too big for a float through;
+    daemon messages, poses and web requests are checked with this one rule."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:
+        return False
 
 
 def _finite(value: Any) -> Any:

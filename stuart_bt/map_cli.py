@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 from typing import Any
+
 from .jsonfile import to_json
 
 ACTIONS = {  # action -> (loco daemon command, help)

@@ -15,13 +15,12 @@ test fails, its runs are summarised in the failure report and their reports save
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import pytest
+
 from .jsonfile import to_json
 
 if TYPE_CHECKING:  # imported when a fixture runs: pytest starts no slower for having stuart_bt installed
@@ -74,12 +73,6 @@ class TreeRunner:
 def _runner(backend: str, request: pytest.FixtureRequest, tmp_path: Path) -> TreeRunner:
     results = request.node.stash.setdefault(RUNS, [])  # shared when a test uses both fixtures
     request.node.stash[RUN_DIR] = tmp_path
-    # a failed run keeps its log folder for a reader; in a test, the test's result says what went
-    # wrong, so the runs' folders go in a short-named scratch folder (sockets live there: not the
-    # long tmp_path) removed after the test
-    scratch = tempfile.mkdtemp(prefix="pytest-runs-")
-    request.addfinalizer(lambda: shutil.rmtree(scratch, ignore_errors=True))
-    request.getfixturevalue("monkeypatch").setattr(tempfile, "tempdir", scratch)
     return TreeRunner(backend, [Path(request.path).parent, Path(request.config.rootpath)], results, tmp_path)
 
 

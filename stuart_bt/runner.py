@@ -81,7 +81,6 @@ class Session:
         self.executor: Executor | None = None
         self.outcome: RunOutcome | None = None
         self._hurry = False
-        self._last_bad_pose_warning = float("-inf")
         self.lost: str | None = None  # why the run cannot go on (its world died), once it cannot
         self.run_dir = Path(tempfile.mkdtemp(prefix="stuart_bt-run-"))  # daemon and world logs
         self._log_file: IO[str] | None = None
@@ -249,14 +248,7 @@ class Session:
                 self._set_pose(body["pose"])
 
     def _set_pose(self, pose: dict[str, Any]) -> None:
-        new = Pose.from_daemon(pose)
-        if new is None:  # refused at the edge: the robot's pose stays what it last was
-            now = self.clock.now()
-            if now - self._last_bad_pose_warning >= 1.0:
-                self._last_bad_pose_warning = now
-                self.events.publish("warning", message=f"loco daemon reported a pose that is not finite numbers; "
-                                                       f"ignored: {str(pose)[:80]}")
-            return
+        new = Pose.from_dict(pose)  # finite numbers: the protocol's schema check refused anything else
         world = self.blackboard.world
         moved = world.pose.distance_to(new) > 0.01 or abs(math.remainder(new.yaw - world.pose.yaw, math.tau)) > 0.01
         world.pose = new

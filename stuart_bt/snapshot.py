@@ -29,9 +29,9 @@ import threading
 from typing import Any, Callable, Iterable
 
 from .events import Event, EventStream, _json_default
+from .jsonfile import to_json
 from .tree.render import category
 from .tree.spec import NodeSpec, TreeSpec
-from .jsonfile import to_json
 
 FORMAT = "stuart_bt.snapshot/1"
 

@@ -13,8 +13,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .jsonfile import read_json
-from .jsonfile import to_json
+from .jsonfile import is_finite_number, read_json, to_json
 
 
 @dataclass
@@ -39,15 +38,6 @@ class Pose:
         return cls(_finite(d, "x"), _finite(d, "y"), _finite(d, "yaw"))
 
     @classmethod
-    def from_daemon(cls, d: Any) -> "Pose | None":
-        """:meth:`from_dict`, or None for data that is not a pose (the caller warns and keeps
-        the pose it had): a garbled or NaN pose never reaches the world state."""
-        try:
-            return cls.from_dict(d)
-        except PoseError:
-            return None
-
-    @classmethod
     def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> "Pose":
         """The pose with ``heading`` from which the map point (x, y) is ``ahead`` metres in front
         and ``left`` metres to the left (REP-103): where to stand to reach or look at it."""
@@ -63,15 +53,9 @@ def _finite(d: dict[str, Any], axis: str) -> float:
     value = d.get(axis)
     if value is None:
         return 0.0
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if not is_finite_number(value):
         raise PoseError(f"pose {axis!r} must be a finite number, got {value!r:.40}")
-    try:
-        number = float(value)
-    except OverflowError:
-        number = math.inf
-    if not math.isfinite(number):
-        raise PoseError(f"pose {axis!r} must be a finite number, got {value!r:.40}")
-    return number
+    return float(value)
 
 
 @dataclass(frozen=True)

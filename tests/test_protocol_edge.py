@@ -21,7 +21,7 @@ from stuart_bt.daemon import protocol as p
 from stuart_bt.daemon.limits import FAULTY_LINES, FULL_WARNINGS
 from stuart_bt.daemon.supervisor import Supervisor
 from stuart_bt.events import EventRecorder, EventStream
-from stuart_bt.world import Pose
+from stuart_bt.world import Pose, PoseError
 
 FAKES = Path(__file__).parent / "fakes"
 
@@ -89,11 +89,12 @@ def test_whatever_is_encoded_decodes_again_with_only_finite_numbers(message):
 @pytest.mark.parametrize("pose", [{"x": "abc", "y": 0}, {"x": float("nan"), "y": 0}, {"x": 1, "y": float("inf")},
                                   {"x": True, "y": 0}, "here", None, {"x": 1, "y": 2, "yaw": "north"}])
 def test_a_pose_that_is_not_finite_numbers_is_not_a_pose(pose):
-    assert Pose.from_daemon(pose) is None
+    with pytest.raises(PoseError):
+        Pose.from_dict(pose)
 
 
 def test_a_good_pose_is_a_pose_and_yaw_defaults_to_zero():
-    assert Pose.from_daemon({"x": 1, "y": 2.5}) == Pose(1.0, 2.5, 0.0)
+    assert Pose.from_dict({"x": 1, "y": 2.5}) == Pose(1.0, 2.5, 0.0)
 
 
 # -- a hostile daemon, for real ------------------------------------------------------------------------
@@ -115,7 +116,7 @@ def test_a_hostile_daemon_is_refused_line_by_line_warned_about_at_a_bounded_rate
         took = time.monotonic() - started
         assert loco.state.get("seq", 0) >= 10, "good heartbeats after the garbage were read"
         assert sup.phase("loco") == "ready"
-        assert Pose.from_daemon(loco.state["pose"]) == Pose(1.0, 2.0, 0.5)
+        assert Pose.from_dict(loco.state["pose"]) == Pose(1.0, 2.0, 0.5)
         warnings = [e.data["message"] for e in recorder.of_kind("warning")]
         assert 1 <= len(warnings) <= FULL_WARNINGS + took + 2, len(warnings)  # a few in full, then a summary a second
         assert any("nested deeper" in w or "limit" in w for w in warnings)

@@ -292,8 +292,5 @@ class DaemonClient:
     def _bad_line(self, message: str) -> None:
         self._bad_lines.report(message, time.monotonic())
 
-    def _warn(self, message: str) -> None:
-        self._publish_warning(message, {})
-
     def _publish_warning(self, message: str, fields: dict[str, Any]) -> None:
         self.events.publish("warning", family=self.family, message=message, **fields)

@@ -8,11 +8,10 @@ string and can never start a second command.
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass
 from typing import Any
 
-from ..jsonfile import nesting_depth, to_json
+from ..jsonfile import is_finite_number, nesting_depth, to_json
 
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
@@ -77,8 +76,6 @@ def encode(message: dict[str, Any]) -> bytes:
     output is the terminating one.
     """
     return (to_json(message, separators=(",", ":"), ensure_ascii=False) + "\n").encode()
-
-
 
 
 def decode(line: bytes | str) -> dict[str, Any]:
@@ -294,16 +291,6 @@ def check_pose(value: Any, what: str = "pose") -> dict[str, Any]:
         if not is_finite_number(value[axis]):
             raise ProtocolError(f"{what}.{axis} must be a finite number, got {value[axis]!r:.40}")
     return value
-
-
-def is_finite_number(value: Any) -> bool:
-    """An int or float (not bool) that converts to a finite float."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return False
-    try:
-        return math.isfinite(float(value))
-    except OverflowError:
-        return False
 
 
 def request(request_id: str, cmd: str, args: dict[str, Any] | None = None) -> dict[str, Any]:

@@ -13,9 +13,9 @@ import math
 import sys
 from typing import Any
 
+from ..jsonfile import to_json
 from .domain import format_value
 from .plan import TaskNode, describe_changes
-from ..jsonfile import to_json
 
 MAX_INDENT = 40  # deeper levels are drawn at this indentation, marked with their depth
 UNICODE = {"tee": "├─ ", "last": "└─ ", "pipe": "│  ", "gap": "   ", "no": "✗", "to": "→", "then": "⇒"}

@@ -29,6 +29,7 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any, BinaryIO
+
 from ..jsonfile import to_json
 
 MAX_LINE_BYTES = 64 * 1024

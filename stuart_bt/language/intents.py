@@ -23,6 +23,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
+
 from ..jsonfile import to_json
 
 NAVIGATE, MOVE, TURN, TURN_AROUND = "navigate_to_marker", "move_relative", "turn_by_angle", "turn_around"

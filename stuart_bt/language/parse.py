@@ -21,10 +21,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..jsonfile import to_json
 from .grammar import Defaults, Grammar
 from .intents import TaskIntent
 from .wake import GREETINGS, WakeFilter
-from ..jsonfile import to_json
 
 
 @dataclass

@@ -16,6 +16,7 @@ import argparse
 import math
 import sys
 from typing import Any
+
 from ..jsonfile import to_json
 
 HELP = "look once: detections with torso and world positions, an annotated picture"

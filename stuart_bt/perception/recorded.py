@@ -21,9 +21,9 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from ..jsonfile import to_json
 from ..world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
-from ..jsonfile import to_json
 
 DEPTH_SCALE = 0.001  # metres per depth unit (the RealSense default: millimetres)
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
-import math
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
 from importlib.resources import files
@@ -37,7 +36,7 @@ from starlette.staticfiles import StaticFiles
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
-from ..jsonfile import nesting_depth
+from ..jsonfile import is_finite_number, nesting_depth
 from ..world import load_markers
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
@@ -353,7 +352,7 @@ async def _json(request: Request) -> dict[str, Any]:
         raise BadRequest(f"the request body is nested deeper than {MAX_NESTING} levels")
     try:
         body = json.loads(raw, parse_constant=_no_constant)
-    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError, ValueError):
+    except (ValueError, RecursionError):  # JSONDecodeError and UnicodeDecodeError are ValueErrors
         raise BadRequest("the request body is not JSON") from None
     if not isinstance(body, dict):
         raise BadRequest("the request body must be a JSON object")
@@ -366,7 +365,7 @@ def _no_constant(name: str) -> float:
 
 def _number(body: dict[str, Any], key: str) -> float:
     value = body.get(key)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+    if not is_finite_number(value):
         raise BadRequest(f"{key} must be a finite number (metres or radians)")
     return float(value)
 

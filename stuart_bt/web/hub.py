@@ -21,8 +21,8 @@ from collections import deque
 from typing import Any, Iterable
 
 from ..events import Event, EventStream, _json_default
-from ..snapshot import TreeSnapshot
 from ..jsonfile import to_json
+from ..snapshot import TreeSnapshot
 
 FLUSH_EVERY = 0.015  # seconds between two pushes to the browsers
 HISTORY = 50_000  # events a late browser receives (the tour has ~3000 status changes)

@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from ..suggest import did_you_mean
 from ..jsonfile import to_json
+from ..suggest import did_you_mean
 
 NAME_RULE = re.compile(r"[a-z][a-z0-9_]{0,39}")  # used with fullmatch: "$" would let a trailing newline in
 DISPLAY_MAX = 60
