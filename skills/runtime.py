@@ -178,7 +178,7 @@ class Daemon:
             return
         silent = time.monotonic() - self._last_heard
         if silent > self._watchdog:
-            self._stop_everything("stopped", f"{self.family} daemon heard nothing from its framework for "
+            self._stop_everything("watchdog", f"{self.family} daemon heard nothing from its framework for "
                                              f"{silent:.2f} s (watchdog {self._watchdog:g} s)")
             self._last_heard = time.monotonic()
 

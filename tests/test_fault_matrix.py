@@ -220,6 +220,6 @@ def test_a_framework_that_falls_silent_mid_command_leaves_the_daemon_stopped(fam
     silent_from = time.monotonic()
     stopped = daemon.wait_for(lambda m: m.get("id") == "busy" and m.get("type") == "error", timeout=10.0)
     report(f"{family} framework silence", time.monotonic() - silent_from)
-    assert stopped["code"] == "stopped" and "heard nothing from its framework" in stopped["reason"]
+    assert stopped["code"] == "watchdog" and "heard nothing from its framework" in stopped["reason"]
     daemon.proc.stdin.close()
     assert daemon.finish()[0] == 0

@@ -160,7 +160,7 @@ def test_a_framework_that_goes_silent_mid_walk_leaves_a_stopped_robot(make, reco
     assert not walk.finished, walk.reason
     time.sleep(1.0)  # silence: no poll, so no keep-alive
     poll_at_20hz(sup, lambda: walk.finished)
-    assert walk.error_code == "stopped" and "heard nothing from its framework" in walk.reason, walk.reason
+    assert walk.error_code == "watchdog" and "heard nothing from its framework" in walk.reason, walk.reason
     stopped_at = loco.state["pose"]["x"]
     time.sleep(0.3)  # three heartbeats later
     sup.poll()

@@ -7,6 +7,7 @@ from __future__ import annotations
 import http.client
 import json
 import shutil
+import socket
 from importlib.resources import files
 from pathlib import Path
 
@@ -95,3 +96,37 @@ def test_any_body_to_any_endpoint_is_answered_below_500_without_a_traceback(serv
     assert "Traceback" not in text
     if status >= 400:
         assert served.markers.read_text() == before
+
+
+def raw_exchange(served: Served, data: bytes) -> bytes:
+    """Send bytes that need not be HTTP on a fresh connection; the first bytes of the answer."""
+    with socket.create_connection(("127.0.0.1", served.port), timeout=30) as conn:
+        try:
+            conn.sendall(data)
+        except OSError:  # the server may close before it read everything: what it said is still there
+            pass
+        try:
+            return conn.recv(200)
+        except ConnectionResetError:
+            return b""
+
+
+@pytest.mark.parametrize("data", [
+    b"\x00\xff\xfe garbage that is no request\r\n\r\n",
+    b"GET /" + b"a" * (2 << 20) + b" HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
+    b"GET /api/state HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Huge: " + b"b" * (2 << 20) + b"\r\n\r\n",
+], ids=["garbage", "a 2 MiB request line", "a 2 MiB header"])
+def test_bytes_that_are_no_request_get_a_400_and_the_server_goes_on(served, data):
+    answer = raw_exchange(served, data)
+    assert answer == b"" or answer.startswith(b"HTTP/1.1 400"), answer
+    assert request(served, "GET", "/api/state")[0] == 200
+
+
+def test_clients_that_connect_and_say_nothing_do_not_keep_others_waiting(served):
+    silent = [socket.create_connection(("127.0.0.1", served.port), timeout=30) for _ in range(50)]
+    try:
+        status, text = request(served, "GET", "/api/state")
+        assert status == 200 and json.loads(text)["mode"] == "tree"
+    finally:
+        for conn in silent:
+            conn.close()

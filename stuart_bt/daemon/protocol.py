@@ -44,6 +44,7 @@ ERROR_CODES: dict[str, str] = {
     "preempted": "a newer command took the same resource (motion, voice, arms)",
     "stopped": "a stop command (or the daemon shutting down) ended the request",
     "cancelled": "a cancel command for this request ended it",
+    "watchdog": "the daemon heard nothing from its framework while motion ran, so it stopped the robot itself",
     "unreachable": "the goal is out of reach; nothing moved",
     "not_found": "no such object, marker or target",
     "unknown_gesture": "the gesture name is not in the library",

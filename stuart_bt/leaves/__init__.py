@@ -6,7 +6,7 @@
 from __future__ import annotations
 
 from ..tree.spec import NodeSpec
-from .base import Leaf, LeafFailure, RunContext, SkillLeaf
+from .base import Leaf, LeafFailure, RunContext, SkillLeaf, failure_code
 from .builtin import Condition, Log, Set, Stop, Wait
 from .expression import Gesture, Speak
 from .manipulation import Pick, Release
@@ -25,4 +25,4 @@ def make_leaf(spec: NodeSpec, ctx: RunContext) -> Leaf:
     return LEAF_CLASSES[spec.kind](spec, ctx)
 
 
-__all__ = ["Leaf", "LeafFailure", "RunContext", "SkillLeaf", "LEAF_CLASSES", "make_leaf"]
+__all__ = ["Leaf", "LeafFailure", "RunContext", "SkillLeaf", "LEAF_CLASSES", "failure_code", "make_leaf"]

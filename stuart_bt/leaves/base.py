@@ -245,6 +245,13 @@ class SkillLeaf(Leaf):
     on_preempt = _cancel
 
 
+def failure_code(reason: str | None) -> str | None:
+    """The error code a skill leaf's failure reason starts with ("watchdog: loco daemon heard
+    nothing ..." -> "watchdog"), so a caller can act on the kind of failure, not its wording."""
+    code, sep, _ = (reason or "").partition(": ")
+    return code if sep and code.isidentifier() else None
+
+
 def _seconds(value: float) -> str:
     if math.isinf(value):
         return "forever"

@@ -44,6 +44,7 @@ from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentE
 from ..htn.domain import Domain, TaskCall
 from ..htn.state import lab_world
 from ..language import Parser, Resolver, TaskIntent
+from ..leaves import failure_code
 from ..runner import RunOptions, Session
 from ..tree.spec import Location, NodeSpec, TreeSpec
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, Conversation, interpret
@@ -53,6 +54,7 @@ SESSION_HISTORY = 5000  # events a mission session keeps for its report: it may 
 MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
 MAX_QUEUED_REPLIES = 2  # replies waiting to be said; a newer one pushes out the oldest
 STALE_REPLY_S = 10.0  # wall seconds a reply may wait for its turn before it answers a moment long gone
+WATCHDOG_SENTENCE = "I stopped: I lost touch with my controller for a moment. Say continue when it is safe to go on."
 OBJECT_FAULTS = ("not_found", "unreachable")  # failures that mean: the object is not where memory says
 
 
@@ -532,17 +534,14 @@ class MissionExecutor:
                 self._finish(m, "replaced", "replaced by a new command")
                 return
             if outcome.status == "STOPPED" or m.cancelled == "stopped":
-                m.halt_tick = outcome.ticks
-                self._finish(m, "stopped", outcome.reason)
-                with self._cond:
-                    m.cancelled = None
-                    if m.resume_requested:  # "continue" was said while this stop was halting the tree
-                        m.resume_requested = False
-                        self._resume(m)
-                    else:
-                        self.halted = m
+                self._hold(m, outcome, outcome.reason)
                 return
             reason = self._failure_reason(failed_path, outcome)
+            if failure_code(reason) == "watchdog":  # this process froze and a daemon stopped the robot:
+                self._hold(m, outcome, reason)  # it moves again only when told to continue
+                if self.halted is m:
+                    self._say(WATCHDOG_SENTENCE)
+                return
             if m.repairs >= self.options.max_repairs or failed_path is None:
                 self._explain_failure(m, compiled, failed_path, reason)
                 return
@@ -558,6 +557,19 @@ class MissionExecutor:
             self._finish(m, "failed", unplannable)
             return
         self._finish(m, "succeeded", None)
+
+    def _hold(self, m: Mission, outcome: RunOutcome, reason: str | None) -> None:
+        """The mission stopped part way: kept for "continue" (or resumed at once when "continue"
+        was already said while the stop was halting the tree)."""
+        m.halt_tick = outcome.ticks
+        self._finish(m, "stopped", reason)
+        with self._cond:
+            m.cancelled = None
+            if m.resume_requested:
+                m.resume_requested = False
+                self._resume(m)
+            else:
+                self.halted = m
 
     def _finish(self, m: Mission, status: str, reason: str | None) -> None:
         m.status, m.reason = status, reason
@@ -628,7 +640,7 @@ class MissionExecutor:
         the re-plan looks for it."""
         reason = self._leaf_reason(failed_path) or ""
         label = (task.skill_args or {}).get("object")
-        if task.skill in ("pick", "find") and label and reason.split(":")[0] in OBJECT_FAULTS:
+        if task.skill in ("pick", "find") and label and failure_code(reason) in OBJECT_FAULTS:
             self.world.objects.pop(label, None)
 
     # -- running one tree ---------------------------------------------------------------------------
@@ -686,7 +698,7 @@ class MissionExecutor:
     def _explain_failure(self, m: Mission, compiled: CompiledMission | None, path: str | None, reason: str) -> None:
         idx = min(m.done, len(m.texts) - 1)
         what = m.texts[idx] if m.texts else "do that"
-        detail = reason.split(": ", 1)[1] if ": " in reason and reason.split(":")[0].isidentifier() else reason
+        detail = reason.split(": ", 1)[1] if failure_code(reason) else reason
         sentence = f"Sorry, I could not {_clause(what)}: {detail.rstrip('.')}."
         self._say(sentence)
         self._finish(m, "failed", sentence)
