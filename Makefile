@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install -q --disable-pip-version-check
 
-.PHONY: demo test bench system-deps schema docs screenshots clean
+.PHONY: demo test lint bench system-deps schema docs screenshots clean
 
 $(BIN)/python:
 	scripts/venv.sh $(PYTHON) $(VENV)
@@ -20,6 +20,10 @@ $(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
 	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision]"
+	touch $@
+
+$(VENV)/.stamp-lint: pyproject.toml setup.py | $(BIN)/python
+	$(PIP) -e ".[lint]"
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
@@ -38,6 +42,11 @@ demo: system-deps $(VENV)/.stamp-sim
 ## test: the whole pytest suite
 test: system-deps $(VENV)/.stamp-test
 	$(BIN)/python -m pytest
+
+## lint: the ruff rule set and the type check (both configured in pyproject.toml); CI runs it first
+lint: system-deps $(VENV)/.stamp-test $(VENV)/.stamp-lint
+	$(BIN)/ruff check stuart_bt skills sim tasks tests bench
+	$(BIN)/python scripts/typecheck.py
 
 ## bench: benchmarks -> bench/results.json and a table
 bench: system-deps $(VENV)/.stamp-bench

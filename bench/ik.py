@@ -50,6 +50,7 @@ class Tally:
 def grid() -> list[tuple[str, np.ndarray]]:
     """(arm, target in torso_link) for both arms, left arm first."""
     import numpy as np
+
     from stuart_bt.sim.robot import REACH, shoulder_xyz
     from stuart_bt.skills.pick.ik import check_reachable
 
@@ -84,7 +85,7 @@ def _available() -> tuple[list[str], dict[str, str]]:
 
 
 def measure(targets: list[tuple[str, np.ndarray]], names: list[str]) -> dict[str, Tally]:
-    from stuart_bt.skills.pick.ik import make_solver
+    from stuart_bt.skills.pick.solvers import make_solver
 
     solvers = {name: make_solver(name) for name in names}
     for solver in solvers.values():  # build models, caches, lazy imports before timing

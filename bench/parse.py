@@ -131,7 +131,7 @@ def load_corpus() -> list[dict[str, Any]]:
 def _right(row: dict[str, Any], woke: bool, intents: list[TaskIntent]) -> bool:
     want = [TaskIntent.from_dict(i) for i in row["intents"]]
     return woke == bool(row.get("wake", True)) and len(want) == len(intents) and all(
-        a.same_as(b) for a, b in zip(intents, want))
+        a.same_as(b) for a, b in zip(intents, want, strict=True))
 
 
 def accuracy(rows: list[dict[str, Any]], fn: Callable[[str], tuple[bool, list[TaskIntent]]]) -> float:

@@ -158,7 +158,7 @@ def tour_rate(with_vision: bool) -> float:
     from stuart_bt.runner import RunOptions, Session
     from stuart_bt.tree.loader import load_tree_text
 
-    text = VISION_TOUR if with_vision else "\n".join(l for l in VISION_TOUR.splitlines() if "find" not in l)
+    text = VISION_TOUR if with_vision else "\n".join(line for line in VISION_TOUR.splitlines() if "find" not in line)
     repo = Path(__file__).resolve().parents[1]
     spec = load_tree_text(text, str(repo / "trees" / "vision_tour.yaml"),
                           markers_file=repo / "sim" / "maps" / "lab_markers.json")

@@ -11,6 +11,7 @@ private ``ROS_DOMAIN_ID``).
 
 from __future__ import annotations
 
+import contextlib
 import glob
 import importlib.util
 import json
@@ -62,7 +63,7 @@ class RosPeer:
         if reason:
             raise RosUnavailable(reason)
         self.mode = mode
-        self._stderr = tempfile.TemporaryFile()
+        self._stderr = tempfile.TemporaryFile()  # noqa: SIM115 - kept open for the child's life; closed in close()
         self._child = subprocess.Popen(
             [sys.executable, str(SCRIPT), mode, f"{os.getpid()}_{mode}"], env=ros_env(), text=True,
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self._stderr,
@@ -103,10 +104,8 @@ class RosPeer:
 
     def close(self) -> None:
         if self._child.stdin is not None and not self._child.stdin.closed:
-            try:
-                self._child.stdin.close()  # the child exits at end of input
-            except BrokenPipeError:
-                pass
+            with contextlib.suppress(BrokenPipeError):  # the child exits at end of input
+                self._child.stdin.close()
         try:
             self._child.wait(timeout=15)
         except subprocess.TimeoutExpired:

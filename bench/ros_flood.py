@@ -37,7 +37,8 @@ def main(argv: list[str]) -> int:
     rate = float(argv[1]) if len(argv) > 1 else 500.0
     rclpy.init()
     node = Node("soak_flood")
-    publisher = node.create_publisher(String, "audio_msg", QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE))
+    reliable = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+    publisher = node.create_publisher(String, "audio_msg", reliable)
     deadline = time.monotonic() + DISCOVERY_WAIT
     while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
         time.sleep(0.01)

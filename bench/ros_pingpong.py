@@ -33,9 +33,9 @@ from typing import Any
 os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")  # before rclpy loads DDS
 os.environ.setdefault("ROS_DOMAIN_ID", "87")
 
-import rclpy  # noqa: E402
-from rclpy.executors import SingleThreadedExecutor  # noqa: E402
-from std_msgs.msg import String  # noqa: E402
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from std_msgs.msg import String
 
 WARMUP = 200  # answered pings before READY
 MATCH_TIMEOUT = 20.0  # seconds for discovery on loopback (normally well under one)

@@ -21,8 +21,9 @@ import platform
 import sys
 import time
 import traceback
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, soak, tick_overhead, unitree, web
 from .result import Result
@@ -52,7 +53,7 @@ def machine() -> dict[str, Any]:
         "cpu_count": os.cpu_count(),
         "python": platform.python_version(),
         "platform": platform.platform(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
     }
 
 
@@ -83,7 +84,7 @@ def table(results: list[Result]) -> str:
         rows.append((r.benchmark, r.figure, _num(r.value), r.unit, _short(r.anchor.name) if r.anchor else "none",
                      _num(r.anchor.value if r.anchor else None), _num(r.ratio), r.goal or "-", met))
     widths = [max(len(row[i]) for row in rows) for i in range(len(COLUMNS))]
-    lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in rows]
+    lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip() for row in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
 
@@ -135,7 +136,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"running {name}{' (quick)' if args.quick else ''} ...", file=sys.stderr, flush=True)
         try:
             results += BENCHMARKS[name](args.quick)
-        except Exception as e:  # one broken benchmark must not hide the others' figures
+        except Exception as e:  # noqa: BLE001 - one broken benchmark must not hide the others' figures
             traceback.print_exc()
             errors[name] = f"{type(e).__name__}: {e}"
     report = {

@@ -27,8 +27,9 @@ import subprocess
 import sys
 import time
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from . import procstat
 from .result import Anchor, Result
@@ -101,7 +102,8 @@ def _say_all(submit: Callable[[str], Any], wait_idle: Callable[[float], bool], s
             said += 1
         entry += 1
         if not wait_idle(IDLE_TIMEOUT):
-            raise RuntimeError(f"soak: the session was still busy {IDLE_TIMEOUT:g} s after {script[(entry - 1) % len(script)]}")
+            last = script[(entry - 1) % len(script)]
+            raise RuntimeError(f"soak: the session was still busy {IDLE_TIMEOUT:g} s after {last}")
         on_count(said)
     return said
 
@@ -188,9 +190,9 @@ def _good_command(client, place: str, timeout: float = 60.0) -> float:
 
 
 def _flood(env: dict[str, str], seconds: float) -> dict[str, Any]:
-    out = subprocess.run([sys.executable, "-m", "bench.ros_flood", str(seconds), str(FLOOD_RATE)], env=env, capture_output=True,
-                         text=True, timeout=seconds + 60, cwd=os.path.dirname(os.path.dirname(__file__)),
-                         start_new_session=True)
+    out = subprocess.run([sys.executable, "-m", "bench.ros_flood", str(seconds), str(FLOOD_RATE)], env=env,
+                         capture_output=True, text=True, timeout=seconds + 60,
+                         cwd=os.path.dirname(os.path.dirname(__file__)), start_new_session=True)
     if out.returncode != 0:
         raise RuntimeError(f"soak: the flood publisher failed: {out.stderr.strip()[-300:]}")
     return json.loads(out.stdout.strip().splitlines()[-1])

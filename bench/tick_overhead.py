@@ -21,8 +21,9 @@ from __future__ import annotations
 
 import importlib.util
 import statistics
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 import py_trees
 
@@ -78,7 +79,7 @@ class BtcppTrees:
     failure: Any
 
     @classmethod
-    def create(cls) -> "BtcppTrees | None":
+    def create(cls) -> BtcppTrees | None:
         if importlib.util.find_spec("behaviortreepy") is None:
             return None
         import behaviortreepy as bt

@@ -22,6 +22,7 @@ import json
 import subprocess
 import sys
 import time
+from itertools import pairwise
 from pathlib import Path
 
 from .result import Result
@@ -63,7 +64,7 @@ def _one_round(robot, gaps: list[float]) -> float:
         stop = robot.wait_for(lambda r: r.get("api") == 7105 and not any(r["parameter"]["velocity"]), 10, "the stop",
                               since=mark)
         moving = [r["t"] for r in robot.rpc("sport", 7105)[before:] if any(r["parameter"]["velocity"])]
-        gaps += [(b - a) * 1000 for a, b in zip(moving, moving[1:])]
+        gaps += [(b - a) * 1000 for a, b in pairwise(moving)]
         daemon.wait(timeout=10)
         return (stop["t"] - closed) * 1000
     finally:

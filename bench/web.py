@@ -200,12 +200,12 @@ def run(quick: bool = False) -> list[Result]:
     server = Server(events)
     clients = Clients(server.url)
     try:
-        results = [overhead(shape, ex, ticks, rounds, rate) for shape, ex in zip(shapes, watched)]
+        results = [overhead(shape, ex, ticks, rounds, rate) for shape, ex in zip(shapes, watched, strict=True)]
         time.sleep(0.2)  # the last batch on its way
     finally:
         counts, delays = clients.close()
         server.close()
-    sent = sum(ex.ticks * shape.size for shape, ex in zip(shapes, watched))
+    sent = sum(ex.ticks * shape.size for shape, ex in zip(shapes, watched, strict=True))
     if min(counts) < sent:
         raise RuntimeError(f"a client received {min(counts)} of {sent} status events")
     return [*results, *latency(delays, rate)]

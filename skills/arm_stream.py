@@ -13,10 +13,11 @@ processes: it imports the vendor SDK).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass
 import threading
 import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+from itertools import pairwise
 
 from unitree_sdk2py.idl.default import unitree_hg_msg_dds__HandCmd_, unitree_hg_msg_dds__LowCmd_
 from unitree_sdk2py.idl.unitree_hg.msg.dds_ import HandCmd_, LowCmd_
@@ -77,7 +78,7 @@ def interpolate(frames: tuple[tuple[float, Targets], ...], t: float) -> Targets:
     """Linear interpolation between keyframes; before the first and after the last, hold them."""
     if t <= frames[0][0]:
         return dict(frames[0][1])
-    for (t0, q0), (t1, q1) in zip(frames, frames[1:]):
+    for (t0, q0), (t1, q1) in pairwise(frames):
         if t <= t1:
             f = 0.0 if t1 <= t0 else (t - t0) / (t1 - t0)
             return {j: q0.get(j, q1[j]) + (q1[j] - q0.get(j, q1[j])) * f for j in q1} | \

@@ -12,6 +12,7 @@ for protocol lines only, so a library that prints (vendor SDKs do) cannot corrup
 from __future__ import annotations
 
 import argparse
+import contextlib
 import ctypes
 import importlib
 import json
@@ -23,7 +24,8 @@ import stat
 import sys
 import time
 import traceback
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from stuart_bt.clock import clock_from_spec
 from stuart_bt.daemon import protocol as p
@@ -57,7 +59,7 @@ def main(family: str, backends: Mapping[str, str], argv: list[str] | None = None
     except StartupError as e:  # the operator's to fix: the reason alone, no traceback
         print(f"{family} daemon: {options.backend} backend failed to start: {e}", file=sys.stderr)
         return 1
-    except Exception as e:  # any backend start-up failure ends the process before READY
+    except Exception as e:  # noqa: BLE001 - any backend start-up failure ends the process before READY
         traceback.print_exc()
         print(f"{family} daemon: {options.backend} backend failed to start: {e}", file=sys.stderr)
         return 1
@@ -100,10 +102,8 @@ def _die_with_parent() -> None:
     """Ask Linux to SIGTERM us when the parent dies (stdin EOF covers every other case)."""
     if not sys.platform.startswith("linux"):
         return
-    try:
+    with contextlib.suppress(OSError, AttributeError):
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
-    except (OSError, AttributeError):
-        pass
 
 
 def _load_backend(family: str, backends: Mapping[str, str], name: str) -> type[Backend]:
@@ -210,7 +210,7 @@ class Daemon:
                 return
             try:
                 self._handle_line(line)
-            except Exception as e:  # a bug in the loop itself must not take the robot's daemon down
+            except Exception as e:  # noqa: BLE001 - a bug in the loop itself must not take the robot's daemon down
                 self._log_exception("handling an input line failed", e)
                 self._send(p.error(None, "bad_request", f"the line could not be handled: {type(e).__name__}: {e}"))
 
@@ -252,7 +252,7 @@ class Daemon:
             data = activity.start(now)
         except DaemonError as e:
             self._send(p.error(request_id, e.code, e.reason, e.vendor_code, e.data))
-        except Exception as e:  # a backend bug must not take the daemon down
+        except Exception as e:  # noqa: BLE001 - a backend bug must not take the daemon down
             self._backend_failed(request_id, e)
         else:
             self._activities[request_id] = activity
@@ -271,7 +271,7 @@ class Daemon:
     def _state(self, request_id: str, _args: dict[str, Any]) -> None:
         try:
             self._send(p.done(request_id, self.backend.state()))
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001 - a backend bug must not take the daemon down
             self._backend_failed(request_id, e)
 
     def _cancel(self, request_id: str, args: dict[str, Any]) -> None:
@@ -300,7 +300,7 @@ class Daemon:
             self._end(request_id, code, reason, now)
         try:
             self.backend.stop()
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001 - stop must reach every activity even if the backend fails
             self._log_exception("backend stop failed", e)
         return ended
 
@@ -309,7 +309,7 @@ class Daemon:
         activity = self._activities.pop(request_id)
         try:
             data = activity.cancel(now)
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001 - a backend bug must not take the daemon down
             self._log_exception(f"cancelling {request_id} failed", e)
             data = None
         self._send(p.error(request_id, code, reason, data=data))
@@ -327,7 +327,7 @@ class Daemon:
                 del self._activities[request_id]
                 self._send(p.error(request_id, e.code, e.reason, e.vendor_code, e.data))
                 continue
-            except Exception as e:
+            except Exception as e:  # noqa: BLE001 - a backend bug ends that activity only
                 del self._activities[request_id]
                 self._backend_failed(request_id, e)
                 continue
@@ -346,7 +346,7 @@ class Daemon:
             return
         try:
             state = self.backend.state()
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001 - the heartbeat goes out without the state
             self._log_exception("backend state failed", e)
             state = {}
         self._seq += 1
@@ -401,7 +401,7 @@ class Daemon:
     def _close(self) -> None:
         try:
             self.backend.close()
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001 - the daemon is exiting anyway: say why and go
             self._log_exception("backend close failed", e)
         for fd in (self._in_fd, self._wake_r):
             self._selector.unregister(fd)

@@ -128,7 +128,7 @@ def connect(link: Link) -> None:
                            "set the 'interface' option or STUART_UNITREE_INTERFACE")
     try:
         ChannelFactoryInitialize(link.domain, link.interface)
-    except Exception as e:  # the SDK raises a bare Exception
+    except Exception as e:  # noqa: BLE001 - the SDK raises a bare Exception
         raise StartupError(f"cannot start DDS on {link.where()}: {e}") from None
 
 

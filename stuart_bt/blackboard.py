@@ -60,10 +60,7 @@ class Blackboard:
             else:
                 target = self._data.setdefault(head, {})
                 for part in rest[:-1]:
-                    if isinstance(target, dict):
-                        target = target.setdefault(part, {})
-                    else:
-                        target = getattr(target, part)
+                    target = target.setdefault(part, {}) if isinstance(target, dict) else getattr(target, part)
                 if isinstance(target, dict):
                     target[rest[-1]] = value
                 else:

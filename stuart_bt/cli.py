@@ -1,4 +1,5 @@
-"""``stuart-bt``: validate, draw and run behaviour trees; benchmarks; gesture library.
+"""``stuart-bt``: validate, draw and run behaviour trees; gesture library; the voice commands.
+(The benchmarks live in the repository, not the package: ``make bench``.)
 
 Every command prints one clear message per problem and exits non-zero on bad input; a Python
 traceback only appears with ``--debug``.
@@ -11,8 +12,9 @@ import importlib
 import os
 import signal
 import sys
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 from . import __version__
 from .gesture_cli import add_gesture_commands
@@ -128,12 +130,6 @@ def cmd_run(args: argparse.Namespace) -> int:
     return 128 + interrupted[0] if interrupted else EXIT_FAILED
 
 
-def cmd_bench(args: argparse.Namespace) -> int:
-    from bench.run import main as bench_main  # type: ignore[import-not-found]
-
-    return bench_main(args.rest)
-
-
 def cmd_schema(args: argparse.Namespace) -> int:
     import json
 
@@ -192,12 +188,13 @@ def _load(file: str, markers: str | None) -> Any:
 # validate, show and run start fast. name -> ("module:add_function", one-line summary)
 VOICE_COMMANDS = {
     "parse": ("stuart_bt.language.cli:add_parse_command", "parse what was said into intents (JSON)"),
-    "plan": ("stuart_bt.htn.explain:add_plan_command", "plan a task or an utterance with the HTN domain"),
+    "plan": ("stuart_bt.mission.plan_cli:add_plan_command", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
     "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
     "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
     "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
-    "map": ("stuart_bt.map_cli:add_map_command", "robot SLAM maps (unitree): start mapping, save, relocalise, pose, close"),
+    "map": ("stuart_bt.map_cli:add_map_command",
+            "robot SLAM maps (unitree): start mapping, save, relocalise, pose, close"),
     "serve": ("stuart_bt.web.cli:add_serve_command", "the live web view: tree, mission console, map, gestures"),
 }
 
@@ -248,10 +245,6 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
                    help="JSON or YAML: {family: {option: value}} for the daemons (docs/robot.md)")
     p.set_defaults(func=cmd_run)
 
-    p = sub.add_parser("bench", help="run the benchmarks; writes bench/results.json and prints a table")
-    p.add_argument("rest", nargs=argparse.REMAINDER, help="options for bench/run.py (see --help there)")
-    p.set_defaults(func=cmd_bench)
-
     add_gesture_commands(sub)
     for name, (where, summary) in VOICE_COMMANDS.items():
         if selected is None or selected == name:
@@ -282,7 +275,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_INTERRUPTED
     except BrokenPipeError:
         return EXIT_OK
-    except Exception as e:  # noqa: BLE001 - the last line of defence: one line, no traceback
+    except Exception as e:
         if args.debug:
             raise
         known = _known_error(e)

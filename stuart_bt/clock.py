@@ -75,7 +75,7 @@ class ScaledClock:
         return f"ScaledClock(factor={self._factor}, epoch={self._epoch})"
 
 
-def WallClock() -> ScaledClock:  # noqa: N802 - reads like a class at call sites
+def WallClock() -> ScaledClock:  # named like a class: it reads like one at call sites
     """Real time, starting at zero now."""
     return ScaledClock(1.0)
 

@@ -29,8 +29,9 @@ import json
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import IO, Any, Callable
+from typing import IO, Any
 
 from .clock import Clock
 from .jsonfile import to_json
@@ -62,7 +63,7 @@ class Event:
         return to_json(self.to_dict(), default=_json_default, separators=(",", ":"))
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Event":
+    def from_dict(cls, d: dict[str, Any]) -> Event:
         data = {k: v for k, v in d.items() if k not in ENVELOPE}
         for key in ENVELOPE:
             if f"data_{key}" in data:
@@ -78,7 +79,7 @@ def _json_default(value: Any) -> Any:
     return str(value)
 
 
-Subscriber = Callable[[Event], None]
+Subscriber = Callable[[Event], object]  # what it returns is ignored
 
 
 class EventStream:

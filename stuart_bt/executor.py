@@ -15,8 +15,8 @@ every daemon).
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import py_trees
 from py_trees.common import Status

@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import ast
 import operator
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 _CONSTANT_NAMES = {"true": True, "false": False, "null": None, "True": True, "False": False, "None": None}
 _FUNCTIONS: dict[str, Callable[..., Any]] = {"len": len, "abs": abs, "min": min, "max": max, "round": round}
@@ -80,7 +81,7 @@ class Expression:
             raise
         except KeyError as e:
             raise ExprError(f"blackboard has no key {e.args[0]!r}") from None
-        except Exception as e:  # a type mismatch such as 'a' < 3: report, do not crash the tick
+        except Exception as e:  # noqa: BLE001 - a type mismatch such as 'a' < 3: report, do not crash the tick
             raise ExprError(f"cannot evaluate {self.text!r}: {e}") from None
 
     def __str__(self) -> str:
@@ -115,9 +116,9 @@ def _check(tree: ast.expr) -> None:
         if not isinstance(node, _ALLOWED):
             col = getattr(node, "col_offset", 0) + 1
             raise ExprError(f"'{type(node).__name__}' is not allowed in an expression", col)
-        if isinstance(node, ast.Call):
-            if not isinstance(node.func, ast.Name) or node.func.id not in _FUNCTIONS or node.keywords:
-                raise ExprError(
+        if isinstance(node, ast.Call) and (
+                not isinstance(node.func, ast.Name) or node.func.id not in _FUNCTIONS or node.keywords):
+            raise ExprError(
                     f"only these functions may be called: {', '.join(_FUNCTIONS)}", node.col_offset + 1
                 )
         if isinstance(node, ast.Attribute) and node.attr.startswith("_"):
@@ -140,55 +141,68 @@ def _dotted(node: ast.AST) -> str | None:
 
 
 class _Evaluator:
+    """Evaluates a checked expression tree: one small method per node kind, found by type."""
+
     def __init__(self, lookup: Lookup) -> None:
         self.lookup = lookup
+        self._by_type: dict[type, Callable[[Any], Any]] = {
+            ast.Constant: lambda node: node.value,
+            ast.Name: self._name, ast.Attribute: self._name, ast.Subscript: self._subscript,
+            ast.BoolOp: self._bool_op, ast.UnaryOp: self._unary, ast.BinOp: self._binary,
+            ast.Compare: self._compare, ast.List: self._sequence, ast.Tuple: self._sequence, ast.Call: self._call,
+        }
 
     def visit(self, node: ast.AST) -> Any:
-        if isinstance(node, ast.Constant):
-            return node.value
-        if isinstance(node, (ast.Name, ast.Attribute)):
-            dotted = _dotted(node)
-            if dotted in _CONSTANT_NAMES:
-                return _CONSTANT_NAMES[dotted]
-            if dotted is not None:
-                return self.lookup(dotted)
-            return _get(self.visit(node.value), node.attr)  # type: ignore[attr-defined]
-        if isinstance(node, ast.Subscript):
-            return _get(self.visit(node.value), node.slice.value)  # type: ignore[attr-defined]
-        if isinstance(node, ast.BoolOp):
-            if isinstance(node.op, ast.And):
-                result: Any = True
-                for v in node.values:
-                    result = self.visit(v)
-                    if not result:
-                        return result
+        handler = self._by_type.get(type(node))
+        if handler is None:
+            raise ExprError(f"'{type(node).__name__}' is not allowed in an expression")
+        return handler(node)
+
+    def _name(self, node: ast.Name | ast.Attribute) -> Any:
+        dotted = _dotted(node)
+        if dotted in _CONSTANT_NAMES:
+            return _CONSTANT_NAMES[dotted]
+        if dotted is not None:
+            return self.lookup(dotted)
+        assert isinstance(node, ast.Attribute)  # a bare name is always dotted
+        return _get(self.visit(node.value), node.attr)
+
+    def _subscript(self, node: ast.Subscript) -> Any:
+        return _get(self.visit(node.value), node.slice.value)  # type: ignore[attr-defined]
+
+    def _bool_op(self, node: ast.BoolOp) -> Any:
+        """``and`` / ``or`` with Python's short circuit: the deciding value is the result."""
+        stop_when = not isinstance(node.op, ast.And)  # `and` stops at a falsy value, `or` at a truthy one
+        result: Any = not stop_when
+        for v in node.values:
+            result = self.visit(v)
+            if bool(result) == stop_when:
                 return result
-            result = False
-            for v in node.values:
-                result = self.visit(v)
-                if result:
-                    return result
-            return result
-        if isinstance(node, ast.UnaryOp):
-            value = self.visit(node.operand)
-            if isinstance(node.op, ast.Not):
-                return not value
-            return -value if isinstance(node.op, ast.USub) else +value
-        if isinstance(node, ast.BinOp):
-            return _BINARY[type(node.op)](self.visit(node.left), self.visit(node.right))
-        if isinstance(node, ast.Compare):
-            left = self.visit(node.left)
-            for op, comparator in zip(node.ops, node.comparators):
-                right = self.visit(comparator)
-                if not _COMPARE[type(op)](left, right):
-                    return False
-                left = right
-            return True
-        if isinstance(node, (ast.List, ast.Tuple)):
-            return [self.visit(e) for e in node.elts]
-        if isinstance(node, ast.Call):
-            return _FUNCTIONS[node.func.id](*[self.visit(a) for a in node.args])  # type: ignore[attr-defined]
-        raise ExprError(f"'{type(node).__name__}' is not allowed in an expression")
+        return result
+
+    def _unary(self, node: ast.UnaryOp) -> Any:
+        value = self.visit(node.operand)
+        if isinstance(node.op, ast.Not):
+            return not value
+        return -value if isinstance(node.op, ast.USub) else +value
+
+    def _binary(self, node: ast.BinOp) -> Any:
+        return _BINARY[type(node.op)](self.visit(node.left), self.visit(node.right))
+
+    def _compare(self, node: ast.Compare) -> bool:
+        left = self.visit(node.left)
+        for op, comparator in zip(node.ops, node.comparators, strict=True):
+            right = self.visit(comparator)
+            if not _COMPARE[type(op)](left, right):
+                return False
+            left = right
+        return True
+
+    def _sequence(self, node: ast.List | ast.Tuple) -> list[Any]:
+        return [self.visit(e) for e in node.elts]
+
+    def _call(self, node: ast.Call) -> Any:
+        return _FUNCTIONS[node.func.id](*[self.visit(a) for a in node.args])  # type: ignore[attr-defined]
 
 
 def _get(container: Any, key: Any) -> Any:

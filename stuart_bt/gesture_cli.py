@@ -251,7 +251,7 @@ def keyframe_table(frames: list[Keyframe], limits: Mapping[str, tuple[float, flo
     widths = [max(len(r[i]) for r in table) for i in range(len(header))]
     lines = []
     for r in table:
-        cells = [r[0].ljust(widths[0]), *(c.rjust(w) for c, w in zip(r[1:-1], widths[1:-1])), r[-1]]
+        cells = [r[0].ljust(widths[0]), *(c.rjust(w) for c, w in zip(r[1:-1], widths[1:-1], strict=True)), r[-1]]
         lines.append("  ".join(cells).rstrip())
     return "\n".join(lines)
 
@@ -318,10 +318,9 @@ def load_for_show(source: str) -> tuple[str, list[Keyframe], str]:
     from .skills.gesture.keyframes import gesture_file_problems, keyframes, load_gesture_file
 
     path = Path(source)
-    if not path.exists() and gestures.lookup(source) is not None:
-        gesture = gestures.lookup(source)
-        assert gesture is not None
-        return gesture.name, keyframes(gesture.name), f"library gesture, vendor id {gesture.action_id}"
+    library = gestures.lookup(source) if not path.exists() else None
+    if library is not None:
+        return library.name, keyframes(library.name), f"library gesture, vendor id {library.action_id}"
     problems = gesture_file_problems(path)
     if problems:
         if problems == ["file not found"]:

@@ -9,7 +9,7 @@ import os
 import re
 import stat
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 
 _STRING = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*"', re.DOTALL)  # a JSON string, escapes included
 _BRACKET = re.compile(r"[\[\]{}]")
@@ -53,7 +53,7 @@ def read_json(path: str | Path, error: type[Exception], what: str) -> Any:
         raise error(f"{path}: cannot read: {getattr(e, 'strerror', None) or e}") from None
 
 
-def is_finite_number(value: Any) -> bool:
+def is_finite_number(value: object) -> TypeGuard[int | float]:
     """A JSON number that is a real quantity: an int or float (not a bool) that converts to a
     finite float. Python's JSON reader lets NaN, infinity and ints too big for a float through;
     daemon messages, poses and web requests are checked with this one rule."""

@@ -9,8 +9,9 @@ log, so a report can be rebuilt after the fact.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from .events import Event, EventRecorder, EventStream
 from .jsonfile import to_json

@@ -87,10 +87,10 @@ class Session:
         self._log_writer: JsonlWriter | None = None
 
     # -- set-up -------------------------------------------------------------------------------------
-    def start(self) -> "Session":
+    def start(self) -> Session:
         if self.options.log:
             Path(self.options.log).parent.mkdir(parents=True, exist_ok=True)
-            self._log_file = open(self.options.log, "w", encoding="utf-8")
+            self._log_file = open(self.options.log, "w", encoding="utf-8")  # noqa: SIM115 - the session's life
             self._log_writer = JsonlWriter(self.events, self._log_file)
         world = self.blackboard.world
         if self.spec.markers_file:
@@ -117,10 +117,9 @@ class Session:
             )
             self.supervisor.start()
         self.executor = self.executor_for(self.spec)
-        if self.supervisor is not None:
-            if "loco" in self.supervisor.families:
-                self.supervisor.client("loco").state_listeners.append(self._track_pose)
-                self.events.subscribe(self._track_loco_replies)
+        if self.supervisor is not None and "loco" in self.supervisor.families:
+            self.supervisor.client("loco").state_listeners.append(self._track_pose)
+            self.events.subscribe(self._track_loco_replies)
         return self
 
     def executor_for(self, spec: TreeSpec) -> Executor:
@@ -144,7 +143,7 @@ class Session:
         from .sim.world.client import launch_world
 
         speed = self.options.speed if self.options.speed is not None else (1.0 if self.options.viewer else 0.0)
-        self._world_log = open(self.run_dir / "world.stderr.log", "wb")
+        self._world_log = open(self.run_dir / "world.stderr.log", "wb")  # noqa: SIM115 - the world's life
         self.world = launch_world(seed=self.options.seed, speed=speed, stderr=self._world_log, hold=True,
                                   record=str(self.options.record) if self.options.record else None,
                                   record_fps=self.options.record_fps, viewer=self.options.viewer,
@@ -170,7 +169,7 @@ class Session:
             self.events.publish("warning", message=f"{self.lost}; stopping the run")
         executor.request_stop(self.lost, status="ERROR")
 
-    def __enter__(self) -> "Session":
+    def __enter__(self) -> Session:
         try:
             return self.start()
         except BaseException:

@@ -26,7 +26,8 @@ running path, root first. ``seq`` grows by one with every change to nodes or tre
 from __future__ import annotations
 
 import threading
-from typing import Any, Callable, Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
 from .events import Event, EventStream, _json_default
 from .jsonfile import to_json
@@ -67,7 +68,7 @@ class TreeSnapshot:
         self._unsubscribe = events.subscribe(self.apply) if events is not None else None
 
     @classmethod
-    def from_events(cls, events: Iterable[Event]) -> "TreeSnapshot":
+    def from_events(cls, events: Iterable[Event]) -> TreeSnapshot:
         """The snapshot after replaying ``events`` (a saved log)."""
         snap = cls()
         for event in events:
@@ -147,7 +148,8 @@ class TreeSnapshot:
     def to_dict(self) -> dict[str, Any]:
         with self._lock:
             return {
-                "format": FORMAT, "seq": self.seq, "t": round(self.t, 6), "tree": dict(self._tree) if self._tree else None,
+                "format": FORMAT, "seq": self.seq, "t": round(self.t, 6),
+                "tree": dict(self._tree) if self._tree else None,
                 "nodes": [dict(n, last=dict(n["last"]) if n["last"] else None) for n in self._nodes.values()],
                 "running": self._running(), "blackboard": dict(self._blackboard),
                 "mission": dict(self._mission) if self._mission else None,

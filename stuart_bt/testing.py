@@ -279,6 +279,11 @@ class RunResult:
             "backend (use stuart_sim or run_tree(..., backend='sim'))")
         return self.final_world
 
+    def _first_world(self, what: str) -> dict[str, Any]:
+        """The world at the start of the run (or the first watched tick)."""
+        self._need_world(what)
+        return self.initial_world or self.timeline[0]
+
     def _need_timeline(self, what: str) -> list[dict[str, Any]]:
         __tracebackhide__ = True
         self._need_world(what)
@@ -314,7 +319,8 @@ class RunResult:
 
     def assert_no_failures(self) -> None:
         __tracebackhide__ = True
-        listed = "\n".join(f"  t={f['t']:.2f} {f['path']} ({f['skill']}): {f['reason']}" for f in self.report["failures"])
+        listed = "\n".join(f"  t={f['t']:.2f} {f['path']} ({f['skill']}): {f['reason']}"
+                           for f in self.report["failures"])
         assert not self.report["failures"], f"{len(self.report['failures'])} leaf failure(s):\n{listed}"
 
     def assert_failed(self, path: str, code: str | None = None) -> str:
@@ -403,7 +409,8 @@ class RunResult:
             for s in speech:
                 if not any(s["start"] < g["end"] and g["start"] < s["end"] for g in moves):
                     spans = ", ".join(f"{g['name']} {g['start']:.2f}..{g['end']:.2f}" for g in moves)
-                    problems.append(f"  {prefix}: speech {s['start']:.2f}..{s['end']:.2f} overlaps no gesture ({spans})")
+                    problems.append(
+                        f"  {prefix}: speech {s['start']:.2f}..{s['end']:.2f} overlaps no gesture ({spans})")
         assert not problems, "speech did not overlap gestures:\n" + "\n".join(problems)
 
     # -- assertions: the world (sim) ----------------------------------------------------------------
@@ -413,8 +420,8 @@ class RunResult:
         for s in self._need_timeline("assert_no_collisions"):
             if s.get("collision") or s.get("collided"):
                 b = s["base"]
-                assert False, (f"the base collided by t={s['t']:.2f} at ({b['x']:.2f}, {b['y']:.2f}) "
-                               f"with {s.get('collision_with') or 'an outline (flag collided)'}")
+                raise AssertionError(f"the base collided by t={s['t']:.2f} at ({b['x']:.2f}, {b['y']:.2f}) "
+                                     f"with {s.get('collision_with') or 'an outline (flag collided)'}")
 
     def assert_object_raised(self, label: str, by: float = 0.05, in_hand: bool = True) -> float:
         """``label`` rose at least ``by`` metres above where it started (while a hand held it,
@@ -429,7 +436,8 @@ class RunResult:
         rise = top["objects"][label]["z"] - start
         held = " while held" if in_hand else ""
         assert rise >= by, (f"{label} rose {rise * 100:.1f} cm at most{held} (z {start:.3f} -> "
-                            f"{top['objects'][label]['z']:.3f} at t={top['t']:.2f}); expected at least {by * 100:.1f} cm")
+                            f"{top['objects'][label]['z']:.3f} at t={top['t']:.2f}); "
+                            f"expected at least {by * 100:.1f} cm")
         return rise
 
     def assert_object_at(self, label: str, x: float, y: float, z: float | None = None,
@@ -445,9 +453,8 @@ class RunResult:
     def assert_robot_did_not_move(self, tolerance: float = 0.01) -> None:
         """The base stayed where it started, in every watched tick and at the end."""
         __tracebackhide__ = True
-        self._need_world("assert_robot_did_not_move")
-        b0 = (self.initial_world or self.timeline[0])["base"]
-        for s in [*self.timeline, self.final_world]:
+        b0 = self._first_world("assert_robot_did_not_move")["base"]
+        for s in [*self.timeline, self._need_world("assert_robot_did_not_move")]:
             b = s["base"]
             moved = math.hypot(b["x"] - b0["x"], b["y"] - b0["y"])
             turned = abs(math.remainder(b["yaw"] - b0["yaw"], math.tau))
@@ -460,9 +467,10 @@ class RunResult:
         """No arm or hand joint left the angle it had at ``since`` (default: the start), in any
         watched tick up to ``until`` (default: the end of the run)."""
         __tracebackhide__ = True
-        self._need_world("assert_arms_did_not_move")
-        start = self.state_at(since) if since is not None else (self.initial_world or self.timeline[0])
-        states = self.samples(since=since, until=until) + ([self.final_world] if until is None else [])
+        start = self.state_at(since) if since is not None else self._first_world("assert_arms_did_not_move")
+        states = self.samples(since=since, until=until)
+        if until is None:
+            states.append(self._need_world("assert_arms_did_not_move"))
         q0 = {k: v for k, v in start["joints"].items() if is_arm_joint(k)}
         for s in states:
             moved = {k: round(s["joints"][k] - v, 4) for k, v in q0.items() if abs(s["joints"][k] - v) > tolerance}

@@ -22,14 +22,14 @@ class Pose:
     y: float = 0.0
     yaw: float = 0.0
 
-    def distance_to(self, other: "Pose") -> float:
+    def distance_to(self, other: Pose) -> float:
         return math.hypot(other.x - self.x, other.y - self.y)
 
     def to_dict(self) -> dict[str, float]:
         return {"x": round(self.x, 4), "y": round(self.y, 4), "yaw": round(self.yaw, 4)}
 
     @classmethod
-    def from_dict(cls, d: Any) -> "Pose":
+    def from_dict(cls, d: Any) -> Pose:
         """A pose from daemon or file data; an absent (or null) axis is 0. A present one that is
         not a finite number (a string, a bool, NaN, infinity) raises :class:`PoseError` naming the
         field, so a bad number never becomes the robot's pose."""
@@ -38,7 +38,7 @@ class Pose:
         return cls(_finite(d, "x"), _finite(d, "y"), _finite(d, "yaw"))
 
     @classmethod
-    def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> "Pose":
+    def facing(cls, x: float, y: float, heading: float, ahead: float, left: float = 0.0) -> Pose:
         """The pose with ``heading`` from which the map point (x, y) is ``ahead`` metres in front
         and ``left`` metres to the left (REP-103): where to stand to reach or look at it."""
         cos, sin = math.cos(heading), math.sin(heading)

@@ -56,8 +56,8 @@ def standoff_pose(state: Any, obj: str, side: float | None = None) -> dict[str, 
     dx, dy = (ox - origin["x"], oy - origin["y"]) if origin else (1.0, 0.0)
     heading = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-6 else 0.0
     left = float(state["reach_side"] if side is None else side)
-    spot = Pose.facing(ox, oy, heading, float(state["standoff"]), left)
-    return {"x": spot.x, "y": spot.y, "yaw": heading}
+    stand = Pose.facing(ox, oy, heading, float(state["standoff"]), left)
+    return {"x": stand.x, "y": stand.y, "yaw": heading}
 
 
 @HOOKS.function

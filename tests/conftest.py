@@ -1,13 +1,15 @@
 """The stuart_bt pytest plugin for this checkout (an installed stuart_bt also registers it
 through its ``pytest11`` entry point; registering twice is avoided), pytester for the plugin's
-own tests, and the session guard (tests/session_guard.py): no process a test started outlives
-the session, and temporary files stay in a folder of the session's own."""
+own tests, the session guard (tests/session_guard.py): no process a test started outlives
+the session, and temporary files stay in a folder of the session's own; and the fixtures the
+browser tests (``page``, tests/web_support.py) and the fake-robot tests (``robot``,
+``unitree_daemon``, tests/unitree_fake.py) share."""
 
 from __future__ import annotations
 
 import pytest
 
-pytest_plugins = ["pytester", "session_guard"]
+pytest_plugins = ["pytester", "session_guard", "web_support", "unitree_fake"]  # the last two: shared fixtures
 
 
 def pytest_configure(config: pytest.Config) -> None:

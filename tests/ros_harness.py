@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import queue
 import signal
 import subprocess
 import sys
@@ -98,7 +97,7 @@ class BridgeProcess:
             self.proc.kill()
             return self.proc.wait()
 
-    def __enter__(self) -> "BridgeProcess":
+    def __enter__(self) -> BridgeProcess:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -161,7 +160,7 @@ class RosClient:
                 self.proc.kill()
                 self.proc.wait()
 
-    def __enter__(self) -> "RosClient":
+    def __enter__(self) -> RosClient:
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -13,6 +13,7 @@ a CI machine that fills up. The session's temporary folder is then removed.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import signal
@@ -91,10 +92,8 @@ def leftovers(mark: str) -> dict[int, str]:
         time.sleep(0.1)
         alive = marked_processes(mark)
     for pid in alive:
-        try:
+        with contextlib.suppress(ProcessLookupError, PermissionError):
             os.kill(pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
     return alive
 
 

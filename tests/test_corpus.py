@@ -56,7 +56,7 @@ CASES = load()
 
 def right(case: Case, got: ParseResult) -> bool:
     return (got.wake == case.wake and len(got.intents) == len(case.intents)
-            and all(a.same_as(b) for a, b in zip(got.intents, case.intents)))
+            and all(a.same_as(b) for a, b in zip(got.intents, case.intents, strict=True)))
 
 
 def _show(intents: Any) -> str:

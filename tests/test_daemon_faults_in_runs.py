@@ -88,7 +88,7 @@ class _Daemons:
         self.connected = True
         self._result = result
 
-    def client(self, family: str) -> "_Daemons":
+    def client(self, family: str) -> _Daemons:
         return self
 
     def request(self, cmd: str, args: dict, path: str | None = None) -> _DoneRequest:

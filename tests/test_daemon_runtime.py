@@ -24,7 +24,7 @@ LONG_WALK = {"pose": {"x": 40.0, "y": 0.0, "yaw": None}}  # 80 s of clock time: 
 class Daemon:
     """A daemon process on raw pipes (stderr kept apart, to check it for tracebacks)."""
 
-    started: list["Daemon"] = []  # reaped after each test by the autouse fixture
+    started: list[Daemon] = []  # reaped after each test by the autouse fixture
 
     def __init__(self, argv: list[str]) -> None:
         Daemon.started.append(self)
@@ -35,7 +35,7 @@ class Daemon:
         self.ready = self.wait_for(lambda m: m.get("type") == "ready")
 
     @classmethod
-    def dry(cls, family: str) -> "Daemon":
+    def dry(cls, family: str) -> Daemon:
         return cls([sys.executable, "-m", f"stuart_bt.skills.{family}", "--backend", "dry"])
 
     def send(self, message: dict[str, Any]) -> None:

@@ -74,7 +74,7 @@ def test_progress_reports_the_interpolated_pose_about_every_half_second(daemon):
     walk = run(loco, "navigate", pose={"x": 3.0, "y": 0.0, "yaw": None})  # 6 s of clock time
     poses = [d["pose"]["x"] for d in progress_of(loco, walk)]
     assert 8 <= len(poses) <= 12
-    assert poses == sorted(poses) and 0.0 < poses[0] and poses[-1] < 3.0
+    assert poses == sorted(poses) and poses[0] > 0.0 and poses[-1] < 3.0
     assert all(d["phase"] == "walk" for d in progress_of(loco, walk))
 
 

@@ -17,5 +17,6 @@ def test_an_utterance_keeps_its_kind_and_its_data_kind_survives_the_round_trip()
 def test_plain_events_are_flat_and_read_back_unchanged():
     event = Event(0.25, "status", "tour/welcome", {"old": "INVALID", "new": "RUNNING"}, wall=3.0)
     flat = event.to_dict()
-    assert flat == {"t": 0.25, "wall": 3.0, "kind": "status", "path": "tour/welcome", "old": "INVALID", "new": "RUNNING"}
+    assert flat == {"t": 0.25, "wall": 3.0, "kind": "status", "path": "tour/welcome", "old": "INVALID",
+                    "new": "RUNNING"}
     assert Event.from_dict(flat) == event

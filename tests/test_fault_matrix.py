@@ -9,7 +9,7 @@ report; the assertions only hold generous bounds.
 
 from __future__ import annotations
 
-import json
+import contextlib
 import os
 import signal
 import sys
@@ -63,10 +63,8 @@ def supervised(tmp_path):
     for sup in made:
         for family in sup.families:
             if sup.pid(family):
-                try:
+                with contextlib.suppress(ProcessLookupError):
                     os.kill(sup.pid(family), signal.SIGCONT)
-                except ProcessLookupError:
-                    pass
         sup.shutdown()
 
 

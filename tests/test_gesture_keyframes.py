@@ -168,7 +168,7 @@ def test_save_and_load_round_trip(tmp_path) -> None:
     loaded = load_gesture_file(path)
     assert loaded.name == "my wave"
     assert [f.t for f in loaded.keyframes] == [f.t for f in frames]
-    for a, b in zip(loaded.keyframes, frames):
+    for a, b in zip(loaded.keyframes, frames, strict=True):
         assert a.joints.keys() == b.joints.keys()
         assert all(abs(a.joints[k] - b.joints[k]) < 1e-4 for k in a.joints)
     doc = json.loads(path.read_text())
@@ -227,6 +227,7 @@ def test_a_value_at_a_joint_limit_survives_saving_and_loading(tmp_path):
 
     joint = "right_elbow_joint"
     low, high = _LIMITS[joint]
-    frames = [Keyframe(0.0, dict(NEUTRAL)), Keyframe(1.0, {**NEUTRAL, joint: high}), Keyframe(2.0, {**NEUTRAL, joint: low})]
+    frames = [Keyframe(0.0, dict(NEUTRAL)), Keyframe(1.0, {**NEUTRAL, joint: high}),
+              Keyframe(2.0, {**NEUTRAL, joint: low})]
     loaded = load_gesture_file(save_gesture_file(tmp_path / "edge.json", "edge", frames))
     assert low <= loaded.keyframes[2].joints[joint] <= loaded.keyframes[1].joints[joint] <= high

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt.htn import Planner, PlanningFailed, add_plan_command, load_domain_text
+from stuart_bt.htn import Planner, PlanningFailed, load_domain_text
+from stuart_bt.mission.plan_cli import add_plan_command
 
 ERRANDS = textwrap.dedent("""\
     domain: errands

@@ -14,7 +14,8 @@ pytest.importorskip("pinocchio")
 pytest.importorskip("placo")
 
 from stuart_bt.sim.robot import MJCF_PATH, REACH, shoulder_xyz  # noqa: E402
-from stuart_bt.skills.pick.ik import IKResult, check_reachable, make_solver  # noqa: E402
+from stuart_bt.skills.pick.ik import IKResult, check_reachable  # noqa: E402
+from stuart_bt.skills.pick.solvers import make_solver  # noqa: E402
 
 SOLVERS = ("pin", "placo")
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 
-
 from stuart_bt.testing import run_tree
 
 # Lab map (sim/maps/lab_markers.json): the robot starts at 'entrance' (0, 0, 0).

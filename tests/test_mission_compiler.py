@@ -23,7 +23,8 @@ def plan_for():
 
 
 def shape(node) -> list:
-    return [f"{node.kind} {node.path}", *[shape(c) for c in node.children]] if node.children else f"{node.kind} {node.path}"
+    label = f"{node.kind} {node.path}"
+    return [label, *[shape(c) for c in node.children]] if node.children else label
 
 
 def test_fetch_compiles_to_one_sequence_per_compound_and_one_leaf_per_step(plan_for):

@@ -13,15 +13,15 @@ import pytest
 pytest.importorskip("cv2", reason="perception needs the 'vision' extra (opencv-python-headless)")
 pytest.importorskip("mujoco", reason="rendered frames need the 'sim' extra (mujoco)")
 
-from stuart_bt.perception.frames import CameraError, Frame, Intrinsics  # noqa: E402
-from stuart_bt.perception.pipeline import Perception  # noqa: E402
-from stuart_bt.perception.projection import CameraMount, project, world_to_torso  # noqa: E402
-from stuart_bt.perception.recorded import RecordedFrames, save_frame  # noqa: E402
-from stuart_bt.perception.sim_camera import DepthNoise, SimCamera  # noqa: E402
-from stuart_bt.perception.sim_detector import SimDetector  # noqa: E402
-from stuart_bt.perception.yolo import DetectorConfigError, YoloDetector  # noqa: E402
-from stuart_bt.sim.world.client import launch_world  # noqa: E402
-from stuart_bt.world import Pose  # noqa: E402
+from stuart_bt.perception.frames import CameraError, Frame, Intrinsics
+from stuart_bt.perception.pipeline import Perception
+from stuart_bt.perception.projection import CameraMount, project, world_to_torso
+from stuart_bt.perception.recorded import RecordedFrames, save_frame
+from stuart_bt.perception.sim_camera import DepthNoise, SimCamera
+from stuart_bt.perception.sim_detector import SimDetector
+from stuart_bt.perception.yolo import DetectorConfigError, YoloDetector
+from stuart_bt.sim.world.client import launch_world
+from stuart_bt.world import Pose
 
 KITCHEN = (3.5, 1.5, 0.0)
 BOTTLE_REST_Z, APPLE_REST_Z = 0.855, 0.79  # object centres standing on the kitchen table

@@ -10,7 +10,15 @@ import pytest
 
 from stuart_bt.perception.frames import Intrinsics
 from stuart_bt.perception.projection import (
-    TORSO_HEIGHT, CameraMount, back_project, box_centre, median_depth, project, shrink, to_centre, torso_to_world,
+    TORSO_HEIGHT,
+    CameraMount,
+    back_project,
+    box_centre,
+    median_depth,
+    project,
+    shrink,
+    to_centre,
+    torso_to_world,
     world_to_torso,
 )
 from stuart_bt.world import Pose

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from itertools import pairwise
+
 import numpy as np
 import pytest
 
@@ -26,7 +28,7 @@ def test_path_goes_through_the_doorway_and_every_segment_is_free():
     points = plan(grid, (1.0, 0.5), (5.0, 0.5))
     assert points[0] == (1.0, 0.5) and points[-1] == (5.0, 0.5)
     assert any(2.5 <= y <= 3.5 and 2.8 <= x <= 3.2 for x, y in points)  # a waypoint in the doorway
-    assert all(grid.segment_free(a, b) for a, b in zip(points, points[1:]))
+    assert all(grid.segment_free(a, b) for a, b in pairwise(points))
     assert len(points) <= 5  # smoothing removed the staircase
     assert path_length(points) < 4.0 + 2 * 2.7  # not much longer than via the door's corners
 

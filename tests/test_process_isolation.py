@@ -120,7 +120,8 @@ def test_the_map_command_leaves_the_vendor_sdk_to_the_loco_daemon(tmp_path):
 
 
 def test_the_recorder_notices_an_import_attempt_of_a_package_that_is_not_installed(tmp_path):
-    modules = imports_of(tmp_path, "probe", "code", "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass")
+    probe = "try:\n    import rosidl_probe_absent\nexcept ImportError:\n    pass"
+    modules = imports_of(tmp_path, "probe", "code", probe)
     assert forbidden(modules, ROS) == ["rosidl_probe_absent"]
 
 

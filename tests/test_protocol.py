@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import select
@@ -11,6 +12,8 @@ import time
 from typing import Any
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from stuart_bt.catalogue import FAMILIES
 from stuart_bt.clock import ScaledClock
@@ -203,8 +206,6 @@ def test_encode_makes_one_line_and_decode_reads_it_back():
 
 # -- the decoder at the boundary: refuses, never crashes (issue 12) ---------------------------
 
-from hypothesis import HealthCheck, given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
 
 FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 JSON_VALUES = st.recursive(
@@ -233,10 +234,8 @@ def _decodes_or_refuses(line) -> None:
     except p.ProtocolError:
         return
     assert isinstance(message, dict) and _finite_everywhere(message)
-    try:
+    with contextlib.suppress(p.ProtocolError):
         p.check_daemon_message(message)
-    except p.ProtocolError:
-        pass
 
 
 @FUZZ

@@ -17,9 +17,8 @@ import pytest
 
 pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed: pip install -e '.[ros]'")
 
-from ros_harness import BridgeProcess, Lines, RosClient, alive, ros_env, session_domain_id  # noqa: E402
-
-from stuart_bt.catalogue import FAMILIES  # noqa: E402
+from ros_harness import BridgeProcess, Lines, RosClient, alive, ros_env, session_domain_id
+from stuart_bt.catalogue import FAMILIES
 
 KITCHEN = (3.5, 1.5)  # sim/maps/lab_markers.json
 ARRIVAL = 0.5  # m: the original system's arrival tolerance
@@ -232,5 +231,6 @@ def test_a_bad_namespace_domain_or_options_file_is_one_clear_line_and_nothing_st
     assert len(bad_ns.err.lines) == 1 and bad_ns.err.lines[0].startswith("stuart-bt: bad --namespace 'lab robot!': ")
     assert bad_ns.err.lines[0].endswith("(try '/lab_robot_')")
     assert bad_domain.err.lines == ["stuart-bt: ROS_DOMAIN_ID must be a whole number from 0 to 232, not '900'"]
-    assert len(bad_options.err.lines) == 1 and "unknown family 'gesturs' (did you mean 'gesture'?)" in bad_options.err.lines[0]
+    assert len(bad_options.err.lines) == 1
+    assert "unknown family 'gesturs' (did you mean 'gesture'?)" in bad_options.err.lines[0]
     assert bad_ns.out.lines == bad_domain.out.lines == bad_options.out.lines == []  # no node, no daemons

@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import json
 
-from stuart_bt.clock import ScaledClock
-from stuart_bt.events import Event, EventStream
+from stuart_bt.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 from stuart_bt.ros import topics as t
 
@@ -54,7 +53,8 @@ def test_a_memory_event_from_perception_gives_its_summary_and_markers_of_the_wel
     text, markers = translated(Event(6.0, "memory", "mission/find", summary))
     assert text.topic == t.MEMORY_SUMMARY and json.loads(text.payload) == summary  # the summary as perception made it
     assert markers.topic == t.MEMORY_MARKERS
-    assert [(o["id"], o["label"], o["x"], o["y"], o["z"]) for o in markers.payload] == [("bottle_1", "bottle", 3.9, 1.6, 0.8)]
+    placed = [(o["id"], o["label"], o["x"], o["y"], o["z"]) for o in markers.payload]
+    assert placed == [("bottle_1", "bottle", 3.9, 1.6, 0.8)]
     assert translated(Event(7.0, "leaf", "mission/go", {"outcome": "SUCCESS"})) == []  # no memory, no summary
 
 

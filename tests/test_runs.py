@@ -26,7 +26,8 @@ def test_lab_tour_visits_six_stations_in_order_speaking_while_gesturing():
 
 
 def test_timeout_decorator_preempts_the_walk_and_cancels_it_in_the_daemon():
-    result = run_tree(text="root: {timeout: {name: hurry, seconds: 2, child: {navigate: {name: go, marker: bathroom}}}}")
+    result = run_tree(text="root: {timeout: {name: hurry, seconds: 2, "
+                           "child: {navigate: {name: go, marker: bathroom}}}}")
     assert result.status == "FAILURE"
     (cancel,) = [e for e in result.events("command") if e["cmd"] == "cancel"]
     assert cancel["path"] == "hurry/go"

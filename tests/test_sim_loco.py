@@ -140,5 +140,6 @@ def test_stop_request_halts_the_robot_within_one_tick(stuart_sim):
     # Braking starts within one tick: one tick at full speed, then braking at the limit.
     one_tick_then_brake = MAX_SPEED * TICK + MAX_SPEED**2 / (2 * ACCEL)
     travelled = distance(rest["base"], at_speed["base"])
-    assert travelled <= one_tick_then_brake + 0.01, f"coasted {travelled:.3f} m after stop (limit {one_tick_then_brake:.3f})"
+    assert travelled <= one_tick_then_brake + 0.01, (
+        f"coasted {travelled:.3f} m after stop (limit {one_tick_then_brake:.3f})")
     assert distance(rest["base"], KITCHEN) > 2.0  # nowhere near the goal

@@ -158,7 +158,8 @@ def test_stop_halts_the_walk_at_once_and_continue_walks_on_to_the_bathroom():
         braking = v0 ** 2 / (2 * BRAKE)  # the braking distance at the walking controller's limit
         went_on = distance(half["base"], halted["base"]["x"], halted["base"]["y"])
         assert went_on <= braking + 0.02, (
-            f"the base went on {went_on:.3f} m in 0.5 s after the halt (braking from {v0:.2f} m/s needs {braking:.3f} m)")
+            f"the base went on {went_on:.3f} m in 0.5 s after the halt "
+            f"(braking from {v0:.2f} m/s needs {braking:.3f} m)")
         assert speed(half) <= max(0.0, v0 - 0.9 * BRAKE * (half["t"] - t0)), (
             f"still at {speed(half):.2f} m/s 0.5 s after the halt: it did not brake from the first step")
         still = [s for s in samples if s["t"] >= t0 + v0 / BRAKE + 0.05]
@@ -289,7 +290,8 @@ def test_pick_up_the_bottle_from_the_entrance_walks_up_looks_and_picks_where_the
 
     assert distance(initial["base"], 0.0, 0.0) < 0.05, "the robot did not start at the entrance"
     assert mx.missions[0].status == "succeeded", mx.missions[0].reason
-    order = [e.data["skill"] for e in trace.events if e.kind == "leaf" and e.data["skill"] in ("approach", "find", "pick")]
+    order = [e.data["skill"] for e in trace.events
+             if e.kind == "leaf" and e.data["skill"] in ("approach", "find", "pick")]
     assert order == ["approach", "find", "pick"]
     pick = next(e for e in trace.events if e.kind == "command" and e.data.get("cmd") == "pick")
     aimed, truth = pick.data["args"]["position"], initial["objects"]["bottle"]

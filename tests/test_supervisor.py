@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -88,10 +89,8 @@ def make(stream, tmp_path):
     for sup in made:
         for family in sup.families:  # a test may leave a daemon SIGSTOPped
             if sup.pid(family):
-                try:
+                with contextlib.suppress(ProcessLookupError):
                     os.kill(sup.pid(family), signal.SIGCONT)
-                except ProcessLookupError:
-                    pass
         sup.shutdown()
 
 
@@ -214,7 +213,8 @@ def test_a_daemon_that_never_sends_ready_fails_the_start_with_its_stderr(make):
 def test_an_unknown_backend_fails_the_start_naming_the_valid_ones(make):
     sup = make(backend="unitre", families=("pick",))
     with pytest.raises(DaemonStartError, match=r"^pick daemon failed to start: exited with code 2 before READY "
-                                               r"\(stderr: .*unknown backend 'unitre' \(did you mean 'unitree'\?\); valid backends: (\w+, )*dry(, \w+)*\)$"):
+                                               r"\(stderr: .*unknown backend 'unitre' \(did you mean 'unitree'\?\); "
+                                               r"valid backends: (\w+, )*dry(, \w+)*\)$"):
         sup.start()
 
 
@@ -286,7 +286,8 @@ def test_a_killed_tree_process_leaves_no_daemon_running(tmp_path):
         "from stuart_bt.clock import ScaledClock\n"
         "from stuart_bt.events import EventStream\n"
         "from stuart_bt.daemon.supervisor import Supervisor\n"
-        f"sup = Supervisor('dry', ScaledClock(20), EventStream(ScaledClock(20)), families=('loco',), run_dir={str(tmp_path)!r})\n"
+        "sup = Supervisor('dry', ScaledClock(20), EventStream(ScaledClock(20)), families=('loco',),\n"
+        f"                 run_dir={str(tmp_path)!r})\n"
         "sup.start()\n"
         "sup.client('loco').request('navigate', {'pose': {'x': 40.0, 'y': 0.0}})\n"
         "print(sup.pid('loco'), flush=True)\n"

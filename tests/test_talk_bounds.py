@@ -45,8 +45,8 @@ def test_a_reply_that_waited_too_long_is_dropped_unsaid():
 
 
 def test_a_long_mission_session_keeps_a_bounded_event_history():
-    from stuart_bt.events import EventRecorder, EventStream
     from stuart_bt.clock import ManualClock
+    from stuart_bt.events import EventRecorder, EventStream
 
     stream = EventStream(ManualClock())
     recorder = EventRecorder(stream, limit=100)

@@ -117,8 +117,9 @@ def test_approach_stops_with_the_object_in_front_of_a_shoulder_facing_it() -> No
 def test_fetch_a_known_object_goes_to_it_picks_it_and_puts_it_down_at_the_place() -> None:
     p = plan("fetch(bottle, workbench)")
     assert p.tasks[0].method == "known_location"
-    assert steps(p) == ["speak text=Fetching the bottle for the workbench", "approach object=bottle standoff=0.29 lateral=-0.10",
-                        "find object=bottle", "pick object=bottle", "navigate marker=workbench", "release"]
+    assert steps(p) == ["speak text=Fetching the bottle for the workbench",
+                        "approach object=bottle standoff=0.29 lateral=-0.10", "find object=bottle",
+                        "pick object=bottle", "navigate marker=workbench", "release"]
     assert p.state["held"] is None and p.state["at"] == "workbench"
     assert p.state["objects"]["bottle"] == {"x": 1.0, "y": -2.8, "z": 0.8}  # 0.4 m ahead of the robot
 
@@ -140,9 +141,9 @@ def test_fetch_an_object_remembered_at_a_marker_walks_there_and_looks_for_it() -
     assert steps(p) == [
         "speak text=Fetching the keys for the workbench",
         "navigate marker=kitchen",
-        "find object=keys",                                                      # its position is known from now on
-        "approach object=keys standoff=0.29 lateral=-0.10",                     # the leaf reads the position when it starts
-        "find object=keys",                                                      # and looks again up close
+        "find object=keys",  # its position is known from now on
+        "approach object=keys standoff=0.29 lateral=-0.10",  # the leaf reads the position when it starts
+        "find object=keys",  # and looks again up close
         "pick object=keys",
         "navigate marker=workbench",
         "release",
@@ -165,8 +166,9 @@ def test_fetch_an_unknown_object_looks_around_in_steps_first() -> None:
 
 def test_bring_returns_to_where_the_command_was_given() -> None:
     p = plan("bring(cup)")
-    assert steps(p) == ["speak text=Bringing you the cup", "approach object=cup standoff=0.29 lateral=-0.10", "find object=cup",
-                        "pick object=cup", "navigate marker=entrance", "release", "speak text=Here is your cup."]
+    assert steps(p) == ["speak text=Bringing you the cup", "approach object=cup standoff=0.29 lateral=-0.10",
+                        "find object=cup", "pick object=cup", "navigate marker=entrance", "release",
+                        "speak text=Here is your cup."]
     spot = {"x": 2.0, "y": 1.0, "yaw": 0.5}
     assert steps(plan("bring(cup)", lab(speaker_at=spot)))[4] == "navigate x=2.00 y=1.00 yaw=0.50"
 
@@ -174,9 +176,11 @@ def test_bring_returns_to_where_the_command_was_given() -> None:
 def test_going_to_an_object_walks_up_to_it_looking_for_it_first_when_unknown() -> None:
     known = plan("navigate_to_marker(bottle)")
     assert known.tasks[0].method == "to_object"
-    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=0"]  # squarely
+    # squarely:
+    assert steps(known) == ["speak text=Going to the bottle", "approach object=bottle standoff=0.29 lateral=0"]
     unknown = plan("navigate_to_marker(orange)")
-    assert [s.skill for s in unknown.primitives()][:2] == ["speak", "find"] and unknown.primitives()[-1].skill == "approach"
+    assert [s.skill for s in unknown.primitives()][:2] == ["speak", "find"]
+    assert unknown.primitives()[-1].skill == "approach"
     assert plan("navigate_to_marker(kitchen)").tasks[0].method == "walk"  # a marker is walked to, not approached
 
 
@@ -247,7 +251,8 @@ def test_a_later_intent_that_cannot_follow_an_earlier_one_is_explained() -> None
 def test_an_unknown_place_fails_with_a_suggestion() -> None:
     assert (
         "    ✗ walk: place in markers is false (place='kitchn', markers={entrance, charging_dock, kitchen, bathroom, "
-        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)") in failure_of("navigate_to_marker(kitchn)").splitlines()
+        "workbench, station_1, +5 more}) (did you mean 'kitchen'?)"
+    ) in failure_of("navigate_to_marker(kitchn)").splitlines()
     assert "✗ known_location: place in markers is false (place='moon'" in failure_of("fetch(bottle, moon)")
     assert "visit(moon): no method applies" in failure_of("tour([station_1, moon])")
 

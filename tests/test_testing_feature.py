@@ -117,7 +117,8 @@ from stuart_bt.testing import at
 
 def note_processes(run):
     with open("processes.txt", "a") as f:
-        f.write(f"{run.world.pid} {run.supervisor.pid('loco')} {run.world.socket_path} {run.world.process.clock_path}\\n")
+        f.write(f"{run.world.pid} {run.supervisor.pid('loco')} "
+                f"{run.world.socket_path} {run.world.process.clock_path}\\n")
 
 def test_assertion_fails_after_the_run(stuart_sim):
     result = stuart_sim(text="root: {navigate: {dx: 0.5}}", on_tick=at(0.0, note_processes))

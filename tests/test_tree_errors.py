@@ -76,8 +76,8 @@ def test_several_errors_in_one_file_are_all_reported_in_reading_order():
 def test_node_with_no_kind_key():
     assert one_error("root:\n  sequence:\n    - {}\n") == (
         "t.yaml:3:7: t: empty node: expected one kind key (sequence, selector, parallel, retry, repeat, timeout, "
-        "inverter, force_success, force_failure, oneshot, guard, delay, navigate, approach, turn, pick, release, gesture, "
-        "speak, find, observe, wait, stop, condition, set, log, include)")
+        "inverter, force_success, force_failure, oneshot, guard, delay, navigate, approach, turn, pick, release, "
+        "gesture, speak, find, observe, wait, stop, condition, set, log, include)")
 
 
 def test_name_outside_the_kind_mapping():
@@ -282,7 +282,8 @@ def test_unknown_top_level_key_and_missing_root():
 
 
 def test_version_must_be_one():
-    assert one_error("version: 2\nroot: {stop: {}}\n") == "t.yaml:1:10: unsupported version 2; this loader reads version 1"
+    expected = "t.yaml:1:10: unsupported version 2; this loader reads version 1"
+    assert one_error("version: 2\nroot: {stop: {}}\n") == expected
 
 
 def test_wrong_top_level_type():
@@ -331,7 +332,7 @@ def test_deep_nesting_is_refused_without_recursion_error():
 
 def test_alias_bomb_is_refused():
     lines = ["a: &a [x, x, x, x, x, x, x, x, x, x]"]
-    for prev, name in zip("abcdef", "bcdefg"):
+    for prev, name in zip("abcdef", "bcdefg", strict=True):
         lines.append(f"{name}: &{name} [{', '.join(['*' + prev] * 10)}]")
     text = "\n".join(lines) + "\nroot: {stop: {}}\n"
     assert one_error(text) == "t.yaml:6:4: aliases expand to more than 200000 YAML nodes"

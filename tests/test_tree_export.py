@@ -58,7 +58,8 @@ def test_includes_are_inlined_with_their_names_written():
 
 
 def test_leaves_with_only_their_shorthand_parameter_are_written_short():
-    spec = load_tree_text("root: {sequence: [{speak: {text: Hello}}, {wait: {seconds: 2}}, {speak: {text: x, wait: false}}]}\n")
+    spec = load_tree_text(
+        "root: {sequence: [{speak: {text: Hello}}, {wait: {seconds: 2}}, {speak: {text: x, wait: false}}]}\n")
     doc = yaml.safe_load(to_yaml(spec))
     assert doc["root"] == {"sequence": {"name": "root", "children": [
         {"speak": "Hello"}, {"wait": 2}, {"speak": {"text": "x", "wait": False}}]}}

@@ -4,9 +4,9 @@ hold / release-99 rule, vendor error codes, and recorded gestures streamed with 
 from __future__ import annotations
 
 import pytest
-from unitree_fake import FakeRobot, robot, robot_of_this_file, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
+from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 

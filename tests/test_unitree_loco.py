@@ -4,11 +4,12 @@ under odometry, pause/resume, mapping, faults, and the READY refusal."""
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import pytest
-from unitree_fake import FakeRobot, robot, robot_of_this_file, start_failure, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
+from unitree_fake import FakeRobot, start_failure
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 
@@ -42,7 +43,7 @@ def test_a_long_map_goal_is_walked_in_legs_of_at_most_ten_metres(robot, loco):
     assert [g["mode"] for g in goals] == [1, 1, 1]
     xs = [g["targetPose"]["x"] for g in goals]
     assert xs == pytest.approx([1.0 + 22.0 / 3, 1.0 + 44.0 / 3, 23.0], abs=1e-3)
-    steps = [b - a for a, b in zip([1.0, *xs], xs)]
+    steps = [b - a for a, b in pairwise([1.0, *xs])]
     assert max(steps) <= 10.0
     last = goals[-1]["targetPose"]
     assert 2 * math.atan2(last["q_z"], last["q_w"]) == pytest.approx(1.5708, abs=1e-3)

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
+
 from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")

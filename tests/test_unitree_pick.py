@@ -4,10 +4,9 @@ gate, IK-planned targets within the limits, the hand closing, the release blendi
 from __future__ import annotations
 
 import pytest
-from stuart_bt.sim.robot import description as desc
-from unitree_fake import robot, robot_of_this_file, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
+from stuart_bt.sim.robot import description as desc
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 pytest.importorskip("pinocchio", reason="the pick planner needs the 'ik' extra")
@@ -40,15 +39,16 @@ def test_a_pick_waits_for_confirmation_then_streams_planned_targets_and_closes_t
     assert all(s["crc_ok"] for s in samples)
     weights = [s["weight"] for s in samples]
     full = weights.index(1.0)
-    assert 0 < full and weights[:full] == sorted(weights[:full]) and weights[0] < 0.5  # ramped in, not jumped
+    assert full > 0 and weights[:full] == sorted(weights[:full]) and weights[0] < 0.5  # ramped in, not jumped
     assert samples[-1]["weight"] == 1.0  # holding
     limits = desc.arm_limits("right")
-    for motor, joint in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")):
+    for motor, joint in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right"), strict=True):
         low, high = limits[joint]
         assert all(low - 1e-4 <= s["q"][str(motor)] <= high + 1e-4 for s in samples), joint
     planned = grasp.accepted_data["planned"]["joints"]
     lifted = samples[-1]["q"]
-    assert any(abs(lifted[str(m)] - desc.NEUTRAL[j]) > 0.1 for m, j in zip(RIGHT_ARM_MOTORS, desc.arm_joints("right")))
+    pairs = zip(RIGHT_ARM_MOTORS, desc.arm_joints("right"), strict=True)
+    assert any(abs(lifted[str(m)] - desc.NEUTRAL[j]) > 0.1 for m, j in pairs)
     assert set(planned) == set(desc.arm_joints("right"))
     hands = robot.topic("rt/dex3/right/cmd")[before_hand:]
     grip = [max(abs(q) for q in h["q"]) for h in hands]

@@ -12,9 +12,9 @@ import sys
 from pathlib import Path
 
 import pytest
-from unitree_fake import FakeRobot
 
 from stuart_bt import gestures
+from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 

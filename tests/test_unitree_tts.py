@@ -6,9 +6,9 @@ from __future__ import annotations
 import shutil
 
 import pytest
-from unitree_fake import robot, robot_of_this_file, start_failure, unitree_daemon  # fixtures too
 
 from stuart_bt.daemon.supervisor import Supervisor
+from unitree_fake import start_failure
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")
 NEEDS_ESPEAK = pytest.mark.skipif(shutil.which("espeak-ng") is None,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from web_support import Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
+from web_support import Served, browser_tests, screenshot
 
 browser_tests()
 

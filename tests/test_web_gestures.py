@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from web_support import Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
+from web_support import Served, browser_tests, screenshot
 
 browser_tests()
 pytest.importorskip("mujoco", reason="the pose is applied in the simulator (the sim extra)")

@@ -13,9 +13,9 @@ import pytest
 
 pytest.importorskip("starlette", reason="the web view needs the web extra")
 
-from stuart_bt.clock import ManualClock  # noqa: E402
-from stuart_bt.events import EventStream  # noqa: E402
-from stuart_bt.web.hub import EventHub  # noqa: E402
+from stuart_bt.clock import ManualClock
+from stuart_bt.events import EventStream
+from stuart_bt.web.hub import EventHub
 
 TREE = {"file": "t.yaml", "description": None,
         "root": {"path": "root", "name": "root", "kind": "sequence", "category": "composite", "params": {},
@@ -29,7 +29,7 @@ async def drain(queue: asyncio.Queue, until: float = 0.1) -> list[dict]:
     try:
         while (text := await asyncio.wait_for(queue.get(), until)) is not None:
             out.append(json.loads(text))
-    except asyncio.TimeoutError:
+    except TimeoutError:
         pass
     return out
 

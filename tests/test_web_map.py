@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from web_support import Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
+from web_support import Served, browser_tests, screenshot
 
 browser_tests()
 

@@ -13,7 +13,7 @@ import urllib.request
 
 import pytest
 
-from web_support import REPO, Served, browser_tests, page  # noqa: F401 (page: the browser fixture)
+from web_support import REPO, Served, browser_tests
 
 browser_tests()
 websockets_sync = pytest.importorskip("websockets.sync.client", reason="the socket check needs websockets (web extra)")

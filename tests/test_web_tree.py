@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from web_support import REPO, Served, browser_tests, page, screenshot  # noqa: F401 (page: the browser fixture)
+from web_support import REPO, Served, browser_tests, screenshot
 
 browser_tests()
 pytest.importorskip("mujoco", reason="the tour runs in the simulator (the sim extra)")
@@ -68,7 +68,8 @@ def test_the_tour_ticks_in_the_browser_and_stops_and_continues(page):
 def test_a_saved_log_replays_with_timeline_collapse_and_zoom(page, tmp_path):
     log = tmp_path / "greet.jsonl"
     subprocess.run([sys.executable, "-m", "stuart_bt.cli", "run", "trees/greet.yaml", "--backend", "dry",
-                    "--speed", "50", "--view", "none", "--log", str(log)], cwd=REPO, check=True, capture_output=True, timeout=120)
+                    "--speed", "50", "--view", "none", "--log", str(log)],
+                   cwd=REPO, check=True, capture_output=True, timeout=120)
     with Served("--replay", str(log)) as served:
         page.goto(served.url)
         node(page, "greet").wait_for()

@@ -6,8 +6,10 @@ import json
 import math
 import subprocess
 import time
+from collections.abc import Callable
+from itertools import pairwise
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import pytest
 
@@ -104,7 +106,7 @@ def test_slow_stop_is_immediate(world):
 
 def _segments_clear(points: list[tuple[float, float]]) -> bool:
     grid = scene_grid()
-    for (ax, ay), (bx, by) in zip(points, points[1:]):
+    for (ax, ay), (bx, by) in pairwise(points):
         n = max(2, int(math.hypot(bx - ax, by - ay) / 0.02))
         if not all(grid.is_free(ax + (bx - ax) * k / n, ay + (by - ay) * k / n) for k in range(n + 1)):
             return False

@@ -23,10 +23,9 @@ ROBOT = None if default_robot_path().is_file() else STANDIN
 
 @pytest.fixture(scope="module")
 def world(tmp_path_factory):
-    log = open(tmp_path_factory.mktemp("world") / "world.log", "wb")
-    with launch_world(robot=ROBOT, stderr=log) as w:
+    log_path = tmp_path_factory.mktemp("world") / "world.log"
+    with open(log_path, "wb") as log, launch_world(robot=ROBOT, stderr=log) as w:
         yield w
-    log.close()
 
 
 def test_ready_line_and_state(world):

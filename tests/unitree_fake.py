@@ -7,6 +7,7 @@ Nothing here imports the vendor SDK: the fake runs in its own process, like the 
 from __future__ import annotations
 
 import collections
+import contextlib
 import itertools
 import json
 import os
@@ -68,7 +69,7 @@ class FakeRobot:
         threading.Thread(target=self._read_stderr, daemon=True).start()
         try:
             self.wait_for(lambda r: r["kind"] == "ready", timeout=START_TIMEOUT, what="the fake robot to start")
-        except BaseException:
+        except BaseException:  # noqa: BLE001 - whatever stopped the start, the fake is ended, then it goes on up
             self.close()
             raise AssertionError(f"the fake robot did not start on DDS domain {self.domain} within "
                                  f"{START_TIMEOUT:g} s; its stderr ends: {list(self.stderr)[-5:]}") from None
@@ -146,18 +147,12 @@ class FakeRobot:
     def close(self) -> None:
         """End the fake: end of input first (it exits at once), then SIGKILL to its process group."""
         if self.proc.stdin:
-            try:
+            with contextlib.suppress(OSError):
                 self.proc.stdin.close()
-            except OSError:
-                pass
-        try:
+        with contextlib.suppress(subprocess.TimeoutExpired):
             self.proc.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            pass
-        try:
-            os.killpg(self.proc.pid, signal.SIGKILL)  # the fake, or anything left in its group
-        except (ProcessLookupError, PermissionError):
-            pass
+        with contextlib.suppress(ProcessLookupError, PermissionError):  # the fake, or anything left in its group
+            os.killpg(self.proc.pid, signal.SIGKILL)
         self.proc.wait()
         if self._domain_lock is not None:
             self._domain_lock.close()  # the domain is free for the next fake

@@ -16,8 +16,9 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import pytest
 
@@ -39,7 +40,7 @@ class Served:
 
     def __init__(self, *args: str, host: str = "127.0.0.1", cwd: Path = REPO) -> None:
         self.port = free_port(host)
-        self.log = tempfile.NamedTemporaryFile("w+", prefix="serve-", suffix=".log", delete=False)
+        self.log = tempfile.NamedTemporaryFile("w+", prefix="serve-", suffix=".log", delete=False)  # noqa: SIM115
         env = dict(os.environ, MUJOCO_GL="egl", PYTHONUNBUFFERED="1")
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "stuart_bt.cli", "serve", *args, "--host", host, "--port", str(self.port)],
@@ -79,7 +80,7 @@ class Served:
             Path(self.log.name).unlink(missing_ok=True)
         return code
 
-    def __enter__(self) -> "Served":
+    def __enter__(self) -> Served:
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -285,7 +285,7 @@ def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
     mass = sum(g.mass for g in massive)
     if mass <= 0:
         return 0.0, np.zeros(3), np.zeros((3, 3))
-    com = sum(g.mass * np.asarray(g.pos) for g in massive) / mass
+    com = np.sum([g.mass * np.asarray(g.pos) for g in massive], axis=0) / mass
     inertia = np.zeros((3, 3))
     for g in massive:
         rot = rpy_matrix(g.rpy)
@@ -301,7 +301,8 @@ def segment(name: str, a: Vec3, b: Vec3, radius: float, mass: float, rgba: RGBA,
     d = pb - pa
     length = float(np.linalg.norm(d))
     z = d / length
-    mid = tuple(float(v) for v in (pa + pb) / 2)
+    cx, cy, cz = (float(v) for v in (pa + pb) / 2)
+    mid = (cx, cy, cz)
     # the shapes are symmetric about their axis and end to end: only the axis line matters, so
     # axis-aligned segments get round angles (readable model files)
     for axis, rpy in ((2, (0.0, 0.0, 0.0)), (0, (0.0, math.pi / 2, 0.0)), (1, (math.pi / 2, 0.0, 0.0))):

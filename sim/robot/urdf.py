@@ -58,7 +58,7 @@ def _joint(j: Joint) -> list[str]:
              f'    <child link="{j.child}"/>', f"    {_origin(j.xyz, j.rpy)}"]
     if j.kind != "fixed":
         lines.append(f'    <axis xyz="{nums(j.axis)}"/>')
-        if j.limited:
+        if j.lower is not None and j.upper is not None:  # limited
             lines.append(f'    <limit lower="{num(j.lower)}" upper="{num(j.upper)}" effort="{num(j.effort)}" '
                          f'velocity="{num(j.velocity)}"/>')
         if j.damping:

@@ -9,8 +9,9 @@ the hand opens, when the object is released to physics and falls onto whatever i
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -92,7 +93,7 @@ class JointPlayer:
         self.q = np.clip(np.asarray(q0, dtype=float), self.lower, self.upper)
         self.trajectories: list[_Trajectory] = []
 
-    def start(self, points: list[dict[str, Any]], traj_id: str, now: float, smooth: bool = False) -> dict[str, Any]:
+    def start(self, points: object, traj_id: str, now: float, smooth: bool = False) -> dict[str, Any]:
         """Check and start a trajectory; raises :class:`ArmError` before anything moves."""
         if not isinstance(points, list) or not points:
             raise ArmError("bad_request", "'points' must be a non-empty list of {t, joints}")
@@ -166,7 +167,7 @@ class JointPlayer:
         return [tr.traj_id for tr in self.trajectories]
 
     def joint_dict(self) -> dict[str, float]:
-        return {n: round(float(v), 5) for n, v in zip(self.names, self.q)}
+        return {n: round(float(v), 5) for n, v in zip(self.names, self.q, strict=True)}
 
 
 def hand_poses(player: JointPlayer, side: str) -> tuple[dict[str, float], dict[str, float]]:
@@ -245,8 +246,9 @@ class Hands:
                     self._try_grasp(side, data)
                 if now >= self._until.get(side, 0.0):
                     self.state[side] = "closed" if state == "closing" else "open"
-            if self.held[side] is not None:
-                self._carry(self.held[side], data)
+            held = self.held[side]
+            if held is not None:
+                self._carry(held, data)
 
     def held_label(self, side: str) -> str | None:
         h = self.held[side]

@@ -15,8 +15,9 @@ world server once per physics step; it knows nothing about MuJoCo.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
+from itertools import pairwise
 
 Point = tuple[float, float]
 
@@ -104,9 +105,8 @@ class PathFollower:
         """The (vx, wz) to command this step and whether the path is finished."""
         if self.phase == "done":
             return 0.0, 0.0, True
-        if self.phase in ("align", "track"):
-            if self._update_block(x, y, yaw, now, check):
-                return 0.0, 0.0, False
+        if self.phase in ("align", "track") and self._update_block(x, y, yaw, now, check):
+            return 0.0, 0.0, False
         if self.phase == "align":
             return self._align(x, y, yaw, w)
         if self.phase == "track":
@@ -245,7 +245,7 @@ class _Leg:
     def __init__(self, points: list[Point]) -> None:
         self.points = points
         self.cumulative = [0.0]
-        for a, b in zip(points, points[1:]):
+        for a, b in pairwise(points):
             self.cumulative.append(self.cumulative[-1] + math.hypot(b[0] - a[0], b[1] - a[1]))
         self.length = self.cumulative[-1]
 

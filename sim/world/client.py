@@ -9,6 +9,7 @@ EOF and exits), and socket and clock paths in a fresh private directory.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import json
 import os
@@ -103,12 +104,10 @@ class WorldClient:
         return json.loads(line)
 
     def close(self) -> None:
-        try:
+        with contextlib.suppress(OSError):
             self._sock.close()
-        except OSError:
-            pass
 
-    def __enter__(self) -> "WorldClient":
+    def __enter__(self) -> WorldClient:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -180,13 +179,11 @@ class WorldProcess:
         if self._owns_dir:
             shutil.rmtree(self.run_dir, ignore_errors=True)
         for path in (self.socket_path, self.clock_path):  # after a SIGKILL nobody else removes them
-            try:
+            with contextlib.suppress(FileNotFoundError, IsADirectoryError):
                 path.unlink()
-            except (FileNotFoundError, IsADirectoryError):
-                pass
         return code
 
-    def __enter__(self) -> "WorldProcess":
+    def __enter__(self) -> WorldProcess:
         return self
 
     def __exit__(self, *exc: object) -> None:

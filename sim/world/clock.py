@@ -13,6 +13,7 @@ Layout: eight 8-byte slots, native byte order (all readers are on the same machi
 
 from __future__ import annotations
 
+import contextlib
 import math
 import mmap
 import os
@@ -131,10 +132,8 @@ class ClockFile:
         q[_STATE] = STOPPED
         self._slots.close()
         if remove:
-            try:
+            with contextlib.suppress(FileNotFoundError):
                 os.unlink(self.path)
-            except FileNotFoundError:
-                pass
 
 
 class SimClock:
@@ -211,10 +210,8 @@ class SimClock:
                         time.sleep(gone_wait)
                 return
             rate = self._f[_RATE]
-            if rate > 0:  # the world's pace says roughly when t arrives; sleep part of that
-                pause = min(max(5e-5, 0.5 * (t - now) / rate), 0.02)
-            else:
-                pause = min(pause * 2.0, 0.002)
+            # the world's pace says roughly when t arrives: sleep part of that (paused: back off)
+            pause = min(max(5e-5, 0.5 * (t - now) / rate), 0.02) if rate > 0 else min(pause * 2.0, 0.002)
             time.sleep(pause)
 
     @property
@@ -263,7 +260,7 @@ class SimClock:
         self._f = self._q = None  # type: ignore[assignment]
         self._slots.close()
 
-    def __enter__(self) -> "SimClock":
+    def __enter__(self) -> SimClock:
         return self
 
     def __exit__(self, *exc: object) -> None:

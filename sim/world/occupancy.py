@@ -20,9 +20,10 @@ from __future__ import annotations
 import argparse
 import math
 from collections import deque
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -53,7 +54,7 @@ class Footprint:
         pts = self.polygon
         inside = np.ones(np.shape(x), dtype=bool)
         best = np.full(np.shape(x), np.inf)
-        for (ax, ay), (bx, by) in zip(pts, pts[1:] + pts[:1]):
+        for (ax, ay), (bx, by) in zip(pts, pts[1:] + pts[:1], strict=True):
             ex, ey = bx - ax, by - ay
             inside &= (ex * (y - ay) - ey * (x - ax)) >= 0.0
             seg2 = ex * ex + ey * ey
@@ -106,7 +107,8 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         if not _blocks(corners[:, 2].min(), corners[:, 2].max()):
             continue
         hull = _convex_hull([(float(c[0]), float(c[1])) for c in corners])
-        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull), z_low=float(corners[:, 2].min())))
+        out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull),
+                             z_low=float(corners[:, 2].min())))
     return out
 
 
@@ -181,7 +183,7 @@ class OccupancyGrid:
 
     @classmethod
     def from_model(cls, model: mujoco.MjModel, resolution: float = 0.05, inflation: float = ROBOT_RADIUS,
-                   seeds: Iterable[tuple[float, float]] = ((0.0, 0.0),)) -> "OccupancyGrid":
+                   seeds: Iterable[tuple[float, float]] = ((0.0, 0.0),)) -> OccupancyGrid:
         """Rasterise :func:`static_footprints`. A cell is occupied when an outline comes within
         half a cell of its centre, so even a wall thinner than a cell shows."""
         footprints = static_footprints(model)
@@ -209,7 +211,7 @@ class OccupancyGrid:
 
     @property
     def shape(self) -> tuple[int, int]:
-        return self.occupied.shape  # type: ignore[return-value]
+        return self.occupied.shape
 
     def world_to_cell(self, x: float, y: float) -> tuple[int, int]:
         return (int(math.floor((y - self.origin[1]) / self.resolution)),
@@ -293,7 +295,7 @@ class OccupancyGrid:
         return png, yaml_path
 
     @classmethod
-    def load(cls, yaml_path: str | Path, inflation: float | None = None) -> "OccupancyGrid":
+    def load(cls, yaml_path: str | Path, inflation: float | None = None) -> OccupancyGrid:
         import yaml
         from PIL import Image
 
@@ -330,9 +332,9 @@ def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]]
         if 0 <= c < big.shape[1]:
             big[free[:, c], c] = (232, 236, 242)
     for k in range(math.ceil(grid.origin[1]), math.floor(grid.origin[1] + rows * grid.resolution) + 1):
-        r = int(round((k - grid.origin[1]) / grid.resolution * scale))
-        if 0 <= r < big.shape[0]:
-            big[r, free[r, :]] = (232, 236, 242)
+        row = int(round((k - grid.origin[1]) / grid.resolution * scale))
+        if 0 <= row < big.shape[0]:
+            big[row, free[row, :]] = (232, 236, 242)
     image = Image.fromarray(np.flipud(big).copy())
     draw = ImageDraw.Draw(image)
     try:

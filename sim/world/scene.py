@@ -16,9 +16,9 @@ from __future__ import annotations
 import contextlib
 import sys
 import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterator
 
 import mujoco
 import numpy as np
@@ -167,6 +167,30 @@ def _index(model: mujoco.MjModel, home: dict[str, float], robot_path: Path) -> S
     root = model.body(ROBOT_ROOT).id
     robot_bodies = _subtree(model, root)
     robot_set = set(robot_bodies.tolist())
+    base_qpos, base_dof = _base_joints(model)
+    names, qpos, dof, lower_a, upper_a = _robot_joints(model, robot_set)
+    home_q = np.clip(np.array([home.get(n, 0.0) for n in names]), lower_a, upper_a)
+    person_mocap = None
+    with contextlib.suppress(KeyError):
+        person_body = model.body(PERSON).id
+        if model.body_mocapid[person_body] >= 0:
+            person_mocap = int(model.body_mocapid[person_body])
+    hand_sites = {}
+    for side in SIDES:
+        with contextlib.suppress(KeyError):
+            hand_sites[side] = model.site(f"{side}_hand_point").id
+    try:
+        lidar = model.site("lidar").id
+    except KeyError:
+        lidar = None
+    cameras = {model.camera(c).name: c for c in range(model.ncam)}
+    return Scene(model, np.array(base_qpos), np.array(base_dof), names, np.array(qpos, dtype=int),
+                 np.array(dof, dtype=int), lower_a, upper_a, home_q, _joint_actuators(model, names),
+                 _free_objects(model, robot_set), person_mocap, hand_sites, lidar, robot_bodies, cameras, robot_path)
+
+
+def _base_joints(model: mujoco.MjModel) -> tuple[list[int], list[int]]:
+    """The qpos and dof addresses of the planar base joints (x, y, yaw)."""
     base_qpos, base_dof = [], []
     for name in BASE_JOINTS:
         try:
@@ -175,26 +199,31 @@ def _index(model: mujoco.MjModel, home: dict[str, float], robot_path: Path) -> S
             raise ValueError(f"the robot has no base joint {name!r}") from None
         base_qpos.append(model.jnt_qposadr[j])
         base_dof.append(model.jnt_dofadr[j])
+    return base_qpos, base_dof
+
+
+def _robot_joints(model: mujoco.MjModel,
+                  robot_set: set[int]) -> tuple[list[str], list[int], list[int], np.ndarray, np.ndarray]:
+    """The robot's own joints (not the base): names, qpos and dof addresses, lower and upper
+    limits (an unlimited joint: infinite limits)."""
     names, qpos, dof, lower, upper = [], [], [], [], []
     for j in range(model.njnt):
-        if model.jnt_bodyid[j] not in robot_set:
-            continue
         name = model.joint(j).name
-        if name in BASE_JOINTS:
+        if model.jnt_bodyid[j] not in robot_set or name in BASE_JOINTS:
             continue
         if model.jnt_type[j] not in _HINGE_SLIDE:
             raise ValueError(f"robot joint {name!r} is not a hinge or slide")
         names.append(name)
         qpos.append(model.jnt_qposadr[j])
         dof.append(model.jnt_dofadr[j])
-        if model.jnt_limited[j]:
-            lower.append(model.jnt_range[j, 0])
-            upper.append(model.jnt_range[j, 1])
-        else:
-            lower.append(-np.inf)
-            upper.append(np.inf)
-    lower_a, upper_a = np.array(lower), np.array(upper)
-    home_q = np.clip(np.array([home.get(n, 0.0) for n in names]), lower_a, upper_a)
+        limited = bool(model.jnt_limited[j])
+        lower.append(model.jnt_range[j, 0] if limited else -np.inf)
+        upper.append(model.jnt_range[j, 1] if limited else np.inf)
+    return names, qpos, dof, np.array(lower), np.array(upper)
+
+
+def _joint_actuators(model: mujoco.MjModel, names: list[str]) -> np.ndarray:
+    """For each robot joint, the actuator that drives it (-1: none)."""
     joint_actuator = np.full(len(names), -1, dtype=int)
     position = {n: i for i, n in enumerate(names)}
     for a in range(model.nu):
@@ -202,6 +231,11 @@ def _index(model: mujoco.MjModel, home: dict[str, float], robot_path: Path) -> S
             jname = model.joint(model.actuator_trnid[a, 0]).name
             if jname in position:
                 joint_actuator[position[jname]] = a
+    return joint_actuator
+
+
+def _free_objects(model: mujoco.MjModel, robot_set: set[int]) -> dict[str, FreeObject]:
+    """Every body outside the robot with one free joint: the things that can be picked up."""
     objects: dict[str, FreeObject] = {}
     for b in range(1, model.nbody):
         if b in robot_set or model.body_jntnum[b] != 1:
@@ -210,24 +244,4 @@ def _index(model: mujoco.MjModel, home: dict[str, float], robot_path: Path) -> S
         if model.jnt_type[j] == int(mujoco.mjtJoint.mjJNT_FREE):
             label = model.body(b).name
             objects[label] = FreeObject(label, b, int(model.jnt_qposadr[j]), int(model.jnt_dofadr[j]))
-    person_mocap = None
-    try:
-        person_body = model.body(PERSON).id
-        if model.body_mocapid[person_body] >= 0:
-            person_mocap = int(model.body_mocapid[person_body])
-    except KeyError:
-        pass
-    hand_sites = {}
-    for side in SIDES:
-        try:
-            hand_sites[side] = model.site(f"{side}_hand_point").id
-        except KeyError:
-            pass
-    try:
-        lidar = model.site("lidar").id
-    except KeyError:
-        lidar = None
-    cameras = {model.camera(c).name: c for c in range(model.ncam)}
-    return Scene(model, np.array(base_qpos), np.array(base_dof), names, np.array(qpos, dtype=int),
-                 np.array(dof, dtype=int), lower_a, upper_a, home_q, joint_actuator, objects, person_mocap,
-                 hand_sites, lidar, robot_bodies, cameras, robot_path)
+    return objects

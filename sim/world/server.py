@@ -17,6 +17,7 @@ Protocol (docs/sim.md): request ``{"id", "cmd", "args"}``, reply ``{"id", "ok": 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import selectors
@@ -27,8 +28,9 @@ import stat
 import sys
 import time
 import traceback
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -242,7 +244,7 @@ class World:
             "robot": str(s.robot_path),
             "timestep": self.dt,
             "joints": {n: {"lower": _finite(lo), "upper": _finite(hi), "home": _r(h, 5)}
-                       for n, lo, hi, h in zip(s.joint_names, s.lower, s.upper, s.home)},
+                       for n, lo, hi, h in zip(s.joint_names, s.lower, s.upper, s.home, strict=True)},
             "objects": sorted(s.objects),
             "cameras": sorted(s.cameras),
             "limits": vars(self.base.limits),
@@ -413,7 +415,8 @@ class World:
                 raise WorldError("bad_request", f"render: {key!r} must be true or false, got {flags[key]!r}")
         path = Path(a.string(args, "path", cmd, default=str(self.run_dir / f"render_{self._renders + 1}.png")))
         if path.suffix.lower() not in (".png", ".npy"):
-            raise WorldError("bad_request", f"render: 'path' must end in .png (or .npy for raw pixels), got {str(path)!r}")
+            raise WorldError("bad_request",
+                             f"render: 'path' must end in .png (or .npy for raw pixels), got {str(path)!r}")
         depth_path = Path(a.string(args, "depth_path", cmd, default=str(path.with_name(path.stem + "_depth.npy"))))
         labels_path = Path(a.string(args, "labels_path", cmd, default=str(path.with_name(path.stem + "_labels.npy"))))
         for key, extra in (("depth_path", depth_path), ("labels_path", labels_path)):
@@ -702,7 +705,7 @@ class Server:
             return {"id": request_id, "ok": False, "error": "bad_request", "reason": e.reason}
         except WorldError as e:
             return {"id": request_id, "ok": False, "error": e.code, "reason": e.reason}
-        except Exception as e:  # a bug must not take the world down: report it, keep running
+        except Exception as e:  # noqa: BLE001 - a bug must not take the world down: report it, keep running
             traceback.print_exc()
             return {"id": request_id, "ok": False, "error": "internal", "reason": f"{type(e).__name__}: {e}"}
 
@@ -730,10 +733,8 @@ class Server:
         fd = client.sock.fileno()
         if fd in self.clients:
             del self.clients[fd]
-            try:
+            with contextlib.suppress(KeyError, ValueError):
                 self.selector.unregister(client.sock)
-            except (KeyError, ValueError):
-                pass
         client.sock.close()
 
     def close(self) -> None:
@@ -748,10 +749,8 @@ class Server:
             self._drop(client)
         self.selector.close()
         self.listener.close()
-        try:
+        with contextlib.suppress(FileNotFoundError):
             os.unlink(self.socket_path)
-        except FileNotFoundError:
-            pass
 
 
 # -- the process ------------------------------------------------------------------------------
@@ -825,7 +824,7 @@ def main(argv: list[str] | None = None) -> int:
             import mujoco.viewer
 
             viewer = mujoco.viewer.launch_passive(world.model, world.data)
-        except Exception as e:  # no GL, no window system: say so in one line
+        except Exception as e:  # noqa: BLE001 - no GL, no window system: say so in one line
             print(f"world: cannot open the viewer: {e}", file=sys.stderr)
             return 2
     clock = ClockFile(options.clock, world.dt)
@@ -852,7 +851,7 @@ def main(argv: list[str] | None = None) -> int:
         if options.map_out:
             try:
                 print(f"world: wrote {world.draw_map(options.map_out)}", file=sys.stderr)
-            except Exception as e:
+            except Exception as e:  # noqa: BLE001 - the map is a by-product: the world runs on without it
                 print(f"world: could not draw the map: {e}", file=sys.stderr)
         if server is not None:
             server.close()

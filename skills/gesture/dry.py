@@ -16,7 +16,7 @@ class Playing(TimedActivity):
 
     resource = "arms"
 
-    def __init__(self, backend: "DryGesture", steps: list[tuple[str, float]], result: dict[str, Any]) -> None:
+    def __init__(self, backend: DryGesture, steps: list[tuple[str, float]], result: dict[str, Any]) -> None:
         super().__init__(sum(seconds for _, seconds in steps))
         self._backend = backend
         self._steps = steps

@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from stuart_bt import gestures
-from stuart_bt.jsonfile import to_json
+from stuart_bt.jsonfile import is_finite_number, to_json
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.suggest import did_you_mean
 
@@ -71,11 +71,11 @@ NEUTRAL_ARM: ArmValues = tuple(desc.NEUTRAL[f"left_{k}_joint"] for k in desc.ARM
 def mirror(values: ArmValues) -> ArmValues:
     """The other arm's angles for the mirror-image pose."""
     return tuple(-v if kind in _MIRRORED_ARM else v
-                 for kind, v in zip(desc.ARM_JOINT_KINDS, values))  # type: ignore[return-value]
+                 for kind, v in zip(desc.ARM_JOINT_KINDS, values, strict=True))  # type: ignore[return-value]
 
 
 def arm(side: str, values: ArmValues) -> Pose:
-    return {f"{side}_{kind}_joint": float(v) for kind, v in zip(desc.ARM_JOINT_KINDS, values)}
+    return {f"{side}_{kind}_joint": float(v) for kind, v in zip(desc.ARM_JOINT_KINDS, values, strict=True)}
 
 
 def hand(side: str, shape: str) -> Pose:
@@ -305,7 +305,7 @@ def validate_keyframes(frames: Iterable[Keyframe | Mapping[str, Any]]) -> list[s
         else:
             problems.append(f"{where}: must be an object with 't' and 'joints', got {frame!r}")
             continue
-        if not _is_number(t):
+        if not is_finite_number(t):
             problems.append(f"{where}: t {t!r} is not a number of seconds")
         else:
             t = float(t)
@@ -322,7 +322,7 @@ def validate_keyframes(frames: Iterable[Keyframe | Mapping[str, Any]]) -> list[s
         for name, value in joints.items():
             if name not in _LIMITS:
                 problems.append(f"{where}: unknown joint {name!r}{did_you_mean(str(name), GESTURE_JOINTS)}")
-            elif not _is_number(value):
+            elif not is_finite_number(value):
                 problems.append(f"{where}: {name} = {value!r} is not a number of radians")
             else:
                 lo, hi = _LIMITS[name]
@@ -332,10 +332,6 @@ def validate_keyframes(frames: Iterable[Keyframe | Mapping[str, Any]]) -> list[s
     if count == 0:
         problems.append("there are no keyframes")
     return problems
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
 # --- recorded gesture files -------------------------------------------------------------------

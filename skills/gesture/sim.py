@@ -21,7 +21,6 @@ from stuart_bt.sim.world.client import WorldClient, WorldError
 from .backend import GestureBackend, Keyframe
 from .keyframes import GESTURE_JOINTS, keyframes, validate_keyframes
 
-
 BLEND_THRESHOLD = 0.05  # rad: farther than this from a gesture's first frame, blend into it
 BLEND_SECONDS = 0.6
 
@@ -33,7 +32,7 @@ class Trajectory(Activity):
     resource = "arms"
     report_every = 0.5
 
-    def __init__(self, backend: "SimGesture", frames: list[Keyframe], steps: list[tuple[str, float]],
+    def __init__(self, backend: SimGesture, frames: list[Keyframe], steps: list[tuple[str, float]],
                  result: dict[str, Any]) -> None:
         self.backend = backend
         self.frames = frames

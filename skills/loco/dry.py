@@ -8,8 +8,9 @@ robot somewhere believable between start and goal.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
@@ -73,7 +74,7 @@ class Motion(TimedActivity):
 
     resource = "motion"
 
-    def __init__(self, backend: "DryLoco", plan: Callable[[Pose], list[Segment]], extra: dict[str, Any]) -> None:
+    def __init__(self, backend: DryLoco, plan: Callable[[Pose], list[Segment]], extra: dict[str, Any]) -> None:
         super().__init__(0.0)
         self._backend = backend
         self._plan = plan  # planned when the motion starts, from the pose it starts at

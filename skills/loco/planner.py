@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import heapq
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
+from itertools import pairwise
 
 import numpy as np
 
@@ -146,7 +147,7 @@ def smooth(grid: Grid, points: Sequence[tuple[float, float]]) -> list[tuple[floa
 
 
 def path_length(points: Sequence[tuple[float, float]]) -> float:
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in pairwise(points))
 
 
 def inflate(occupied: np.ndarray, radius_cells: int) -> np.ndarray:

@@ -15,6 +15,7 @@ how much further than asked an approach may stand when furniture blocks every cl
 
 from __future__ import annotations
 
+import contextlib
 import math
 from importlib import resources
 from typing import Any
@@ -24,8 +25,16 @@ from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.sim.world.client import WorldClient, WorldError
 from stuart_bt.world import Pose
 
-from .backend import (ApproachGoal, LocoBackend, MapGoal, NavigateGoal, RelativeGoal, approach_stand, goal_pose,
-                      standoff_on_line)
+from .backend import (
+    ApproachGoal,
+    LocoBackend,
+    MapGoal,
+    NavigateGoal,
+    RelativeGoal,
+    approach_stand,
+    goal_pose,
+    standoff_on_line,
+)
 from .dry import wrap
 from .planner import PlanningError, load_map, path_length, plan
 
@@ -40,7 +49,7 @@ class SimWalk(Activity):
     resource = "motion"
     report_every = 0.5
 
-    def __init__(self, backend: "SimLoco", waypoints: list[tuple[float, float]], final_yaw: float | None,
+    def __init__(self, backend: SimLoco, waypoints: list[tuple[float, float]], final_yaw: float | None,
                  goal: NavigateGoal | None) -> None:
         self.backend = backend
         self.waypoints = waypoints
@@ -155,7 +164,10 @@ class SimLoco(LocoBackend):
             if not self.near_grid.free(*self.near_grid.cell(gx, gy)):
                 raise
         waypoints = plan(self.grid, (start.x, start.y), (gx, gy))  # snaps the goal onto free space
-        snapped = self.grid.centre(*self.grid.nearest_free(*self.grid.cell(gx, gy), int(0.3 / self.grid.resolution)))
+        free = self.grid.nearest_free(*self.grid.cell(gx, gy), int(0.3 / self.grid.resolution))
+        if free is None:
+            raise PlanningError(f"({gx:.2f}, {gy:.2f}) has no free space within 0.3 m")
+        snapped = self.grid.centre(*free)
         if not self.near_grid.segment_free(snapped, (gx, gy)):
             raise PlanningError(f"({gx:.2f}, {gy:.2f}) is too close to an obstacle to approach")
         return [*waypoints[:-1], snapped, (gx, gy)]
@@ -170,6 +182,7 @@ class SimLoco(LocoBackend):
         the stand-off grow, in 5 cm steps up to ``approach_slack`` metres, before the approach fails."""
         start = Pose.from_dict(self.refresh()["base"])
         facing = standoff_on_line(start, goal).yaw
+        assert facing is not None  # a stand-off always faces its point
         headings = [facing + math.radians(15.0 * k * sign) for k in range(13) for sign in ((1,) if k == 0 else (1, -1))]
         sides = (goal.lateral, -goal.lateral) if goal.lateral else (0.0,)
         extra = 0.0
@@ -197,10 +210,8 @@ class SimLoco(LocoBackend):
         self.call("base_stop")
 
     def state(self) -> dict[str, Any]:
-        try:
+        with contextlib.suppress(DaemonError):  # the heartbeat still goes out; the next command says why
             self.refresh()
-        except DaemonError:
-            pass  # the heartbeat still goes out; the next command reports the world's error
         return {"pose": self.pose().to_dict(), "status": self._state.get("base_status")}
 
     def close(self) -> None:

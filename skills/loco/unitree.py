@@ -28,6 +28,7 @@ import json
 import math
 import threading
 import time
+from itertools import pairwise
 from typing import Any
 
 from unitree_sdk2py.g1.loco.g1_loco_client import LocoClient
@@ -69,7 +70,7 @@ def split_legs(points: list[tuple[float, float]], max_leg: float) -> list[tuple[
     """The route's corners, with straight pieces longer than ``max_leg`` cut into equal legs
     (the first point, the start, is dropped: every returned point is a goal)."""
     goals: list[tuple[float, float]] = []
-    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+    for (x0, y0), (x1, y1) in pairwise(points):
         pieces = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / max_leg - 1e-9))
         goals += [(x0 + (x1 - x0) * k / pieces, y0 + (y1 - y0) * k / pieces) for k in range(1, pieces + 1)]
     return goals
@@ -102,7 +103,8 @@ class MapWalk(Activity):
     def _send_leg(self, now: float) -> None:
         x, y, yaw = self.legs[self.index]
         self._arrivals_seen = self.backend.arrival_count()
-        code, _ = self.backend.slam.request(API_NAVIGATE, {"data": {"targetPose": pose_payload(x, y, yaw), "mode": 1}})
+        goal = {"data": {"targetPose": pose_payload(x, y, yaw), "mode": 1}}
+        code, _ = self.backend.slam_service().request(API_NAVIGATE, goal)
         vendor.check(code, SLAM, f"navigate (leg {self.index + 1} of {len(self.legs)})",
                      data={"pose": self.backend.pose().to_dict()})
         self._leg_deadline = now + self.backend.leg_timeout
@@ -249,7 +251,7 @@ class SlamCall(Activity):
         self.backend, self.what, self.api, self.data, self.result, self.error = backend, what, api, data, result, error
 
     def start(self, now: float) -> None:
-        code, _ = self.backend.slam.request(self.api, {"data": self.data})
+        code, _ = self.backend.slam_service().request(self.api, {"data": self.data})
         vendor.check(code, SLAM, self.what, self.error)
 
     def poll(self, now: float) -> Done:
@@ -269,7 +271,7 @@ class PauseWalk(Activity):
         walk = self.backend.walk
         if walk is None:
             raise DaemonError("not_found", f"no navigation is running to {'pause' if self.pause else 'resume'}")
-        code, _ = self.backend.slam.request(API_PAUSE if self.pause else API_RESUME, {"data": {}})
+        code, _ = self.backend.slam_service().request(API_PAUSE if self.pause else API_RESUME, {"data": {}})
         vendor.check(code, SLAM, "pause" if self.pause else "resume")
         if self.pause:
             self.backend.loco.StopMove()
@@ -289,8 +291,10 @@ class UnitreeLoco(LocoBackend):
         super().__init__(clock, options)
         self.link = vendor.link_from(options, "loco", OWN_OPTIONS)
         where = "loco unitree options"
-        num = lambda key, default, minimum=0.0: vendor.startup_option(
-            lambda: a.number(options, key, where, default=default, minimum=minimum))
+
+        def num(key: str, default: float, minimum: float = 0.0) -> float:
+            return vendor.startup_option(lambda: a.number(options, key, where, default=default, minimum=minimum))
+
         self.max_leg = num("max_leg", 10.0, 0.5)
         self.max_speed, self.min_speed = num("max_speed", 0.5, 0.05), num("min_speed", 0.3, 0.0)
         self.max_lateral_speed = num("max_lateral_speed", 0.3, 0.05)
@@ -331,6 +335,12 @@ class UnitreeLoco(LocoBackend):
                                           f"on {self.link.where()}")
         if options.get("map"):
             self._relocalise_at_start(str(options["map"]))
+
+    def slam_service(self) -> vendor.ServiceClient:
+        """The SLAM navigation service; a clear error when the daemon runs without it."""
+        if self.slam is None:
+            raise DaemonError("backend_error", "map goals need the SLAM navigation service (option slam: true)")
+        return self.slam
 
     def _relocalise_at_start(self, map_path: str) -> None:
         if self.slam is None:
@@ -445,7 +455,7 @@ class UnitreeLoco(LocoBackend):
             yaw = gyaw if i == len(points) - 1 and gyaw is not None else heading
             legs.append((x, y, wrap(yaw)))
             previous = (x, y)
-        length = sum(math.hypot(b[0] - a_[0], b[1] - a_[1]) for a_, b in zip(route, route[1:]))
+        length = sum(math.hypot(b[0] - a_[0], b[1] - a_[1]) for a_, b in pairwise(route))
         return MapWalk(self, legs, goal, length)
 
     def turn(self, angle: float) -> Activity:

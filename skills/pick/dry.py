@@ -15,7 +15,7 @@ from typing import Any
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import DaemonError, TimedActivity
+from stuart_bt.daemon.backend import Activity, DaemonError, TimedActivity
 from stuart_bt.suggest import did_you_mean
 from stuart_bt.world import Pose
 
@@ -78,7 +78,7 @@ class Phased(TimedActivity):
 
 
 class Grasp(Phased):
-    def __init__(self, backend: "DryPick", label: str, arm: str) -> None:
+    def __init__(self, backend: DryPick, label: str, arm: str) -> None:
         super().__init__(PICK_SECONDS, PICK_PHASES)
         self._backend, self._label, self._arm = backend, label, arm
 
@@ -88,7 +88,7 @@ class Grasp(Phased):
 
 
 class Place(Phased):
-    def __init__(self, backend: "DryPick", robot_pose: Pose) -> None:
+    def __init__(self, backend: DryPick, robot_pose: Pose) -> None:
         super().__init__(RELEASE_SECONDS, RELEASE_PHASES)
         self._backend, self._robot_pose = backend, robot_pose
 
@@ -111,20 +111,20 @@ class DryPick(PickBackend):
         self.held_arm: str | None = None
         self._held_from: Position | None = None  # where the held object was picked up
 
-    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Grasp:
+    def pick(self, label: str, arm: str, robot_pose: Pose, position: dict[str, float] | None = None) -> Activity:
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        position = self._aim(label, position)
-        distance = position.distance_from(robot_pose)
+        at = self._aim(label, position)
+        distance = at.distance_from(robot_pose)
         if distance > REACH:
             raise DaemonError("unreachable", f"{label} is {distance:.1f} m away; reach is {REACH} m",
                               data={"distance": round(distance, 4), "reach": REACH})
         if arm == "auto":
-            arm = "left" if _lateral(robot_pose, position) >= 0 else "right"
+            arm = "left" if _lateral(robot_pose, at) >= 0 else "right"
         return Grasp(self, label, arm)
 
-    def release(self, arm: str, robot_pose: Pose) -> Place:
+    def release(self, arm: str, robot_pose: Pose) -> Activity:
         if self.held is None or arm not in ("auto", self.held_arm):
             raise DaemonError("not_holding", f"the {'robot' if arm == 'auto' else arm + ' arm'} holds nothing")
         return Place(self, robot_pose)

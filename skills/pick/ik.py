@@ -21,6 +21,7 @@ from __future__ import annotations
 import functools
 import time
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -61,6 +62,8 @@ class IKSolver(ABC):
     """Solves for one arm's joints so that its hand point reaches a target in torso_link."""
 
     name: str = ""
+    restarts: int = 6  # random starts tried after the seed
+    seed: int = 0  # of the random starts: the same target gives the same answer
 
     def solve(self, arm: Arm, target_xyz_torso: np.ndarray, q_init: dict[str, float] | None = None,
               orientation: Orientation = None) -> IKResult:
@@ -89,6 +92,31 @@ class IKSolver(ABC):
     def _solve(self, arm: Arm, target: np.ndarray, seed: np.ndarray,
                orientation: Orientation) -> tuple[np.ndarray, int, str]:
         """(best joint vector, iterations used, a note on failure)."""
+
+    def _best_of_restarts(self, chain, seed: np.ndarray,
+                          descend: Callable[[np.ndarray, bool], tuple[np.ndarray, float, int]],
+                          oriented: bool) -> tuple[np.ndarray, int, str]:
+        """Descend from the seed, then from random starts, keeping the closest result. An
+        oriented descent that misses is followed by a position-only one from where it stopped:
+        the orientation wish fought the joint limits, and position comes first."""
+        rng = np.random.default_rng(self.seed)
+        best_q, best_error, total = chain.clip(seed), np.inf, 0
+        attempt = 0
+        for attempt in range(1 + self.restarts):
+            start = chain.clip(seed) if attempt == 0 else chain.random(rng)
+            q, error, iterations = descend(start, oriented)
+            total += iterations
+            if oriented and error > CONVERGED:
+                q, error, iterations = descend(q, False)
+                total += iterations
+            if error < best_error:
+                best_q, best_error = q, error
+            if error <= CONVERGED:
+                break
+        note = "" if best_error <= POSITION_TOLERANCE else (
+            f"did not converge in {attempt + 1} starts: the closest hand point was {best_error * 1000:.1f} mm "
+            "from the target (joint limits)")
+        return best_q, total, note
 
     def _verdict(self, arm: Arm, target: np.ndarray, q: np.ndarray, iterations: int, note: str,
                  orientation: Orientation, started: float) -> IKResult:
@@ -126,17 +154,6 @@ def check_reachable(arm: Arm, target: np.ndarray) -> str | None:
         return (f"target is behind the back on the {'right' if arm == 'left' else 'left'} side "
                 f"(x {target[0]:.3f} m < {back:.3f} m): the {arm} arm cannot reach around the body")
     return None
-
-
-def make_solver(name: str) -> IKSolver:
-    """``"pin"`` or ``"placo"``; each import is deferred so a caller only loads what it uses."""
-    if name == "pin":
-        from .ik_pin import PinSolver
-        return PinSolver()
-    if name == "placo":
-        from .ik_placo import PlacoSolver
-        return PlacoSolver()
-    raise ValueError(f"unknown IK solver {name!r}{did_you_mean(name, SOLVERS)}; choose from {', '.join(SOLVERS)}")
 
 
 # --- the body as keep-out volumes, in torso_link at waist zero --------------------------------

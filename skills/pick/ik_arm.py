@@ -59,7 +59,7 @@ class ArmChain:
         return out
 
     def named(self, q: np.ndarray) -> dict[str, float]:
-        return {n: float(v) for n, v in zip(self.joints, q)}
+        return {n: float(v) for n, v in zip(self.joints, q, strict=True)}
 
     def to_root(self, p_torso: np.ndarray) -> np.ndarray:
         return self.root_to_torso.rotation @ p_torso + self.torso_translation
@@ -94,7 +94,7 @@ class ArmChain:
     def outside_limits(self, q: np.ndarray, slack: float = 0.0) -> list[str]:
         """Joints out of range, each with its value and limits."""
         return [f"{n}={v:.4f} not in [{lo:.4f}, {hi:.4f}]"
-                for n, v, lo, hi in zip(self.joints, q, self.lower, self.upper)
+                for n, v, lo, hi in zip(self.joints, q, self.lower, self.upper, strict=True)
                 if v < lo - slack or v > hi + slack]
 
     def random(self, rng: np.random.Generator, margin: float = 0.1) -> np.ndarray:

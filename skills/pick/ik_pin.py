@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .ik import CONVERGED, POSITION_TOLERANCE, TARGET_AXES, Arm, IKSolver, Orientation
+from .ik import CONVERGED, TARGET_AXES, Arm, IKSolver, Orientation
 from .ik_arm import ArmChain, chain
 
 ORIENTATION_WEIGHT = 0.25  # m per rad: in the stacked least squares a radian of tilt weighs like
@@ -45,23 +45,9 @@ class PinSolver(IKSolver):
         if orientation:
             local, torso_axis = TARGET_AXES[arm][orientation]
             wish = (local, ch.root_to_torso.rotation @ torso_axis)
-        rng = np.random.default_rng(self.seed)
-        best_q, best_error, total = ch.clip(seed), np.inf, 0
-        for attempt in range(1 + self.restarts):
-            start = ch.clip(seed) if attempt == 0 else ch.random(rng)
-            q, error, iterations = self._descend(ch, goal, start, wish)
-            total += iterations
-            if wish is not None and error > CONVERGED:  # the wish fought the limits: position first
-                q, error, iterations = self._descend(ch, goal, q, None)
-                total += iterations
-            if error < best_error:
-                best_q, best_error = q, error
-            if error <= CONVERGED:
-                break
-        note = "" if best_error <= POSITION_TOLERANCE else (
-            f"did not converge in {attempt + 1} starts: the closest hand point was {best_error * 1000:.1f} mm "
-            "from the target (joint limits)")
-        return best_q, total, note
+        return self._best_of_restarts(
+            ch, seed, lambda start, oriented: self._descend(ch, goal, start, wish if oriented else None),
+            wish is not None)
 
     def _descend(self, ch: ArmChain, goal: np.ndarray, q: np.ndarray,
                  wish: tuple[np.ndarray, np.ndarray] | None) -> tuple[np.ndarray, float, int]:
@@ -75,7 +61,7 @@ class PinSolver(IKSolver):
             position, jp, jw, rotation = ch.jacobian(q)
             e = goal - position
             error = float(np.sqrt(e @ e))
-            turn, jt = (None, None) if wish is None else _turn(rotation @ wish[0], wish[1], jw)
+            turn, jt = _no_turn if wish is None else _turn(rotation @ wish[0], wish[1], jw)
             cost = error if turn is None else error + ORIENTATION_WEIGHT * float(np.sqrt(turn @ turn))
             if error <= CONVERGED and (turn is None or cost - error < 1e-4 or cost > best - 1e-5):
                 return q, error, iteration
@@ -85,7 +71,7 @@ class PinSolver(IKSolver):
                 stalled += 1
                 if stalled >= 8:
                     break
-            if turn is not None:  # stack the wish under the position task, weighted
+            if turn is not None and jt is not None:  # stack the wish under the position task, weighted
                 jp = np.vstack([jp, ORIENTATION_WEIGHT * jt])
                 e = np.concatenate([e, ORIENTATION_WEIGHT * turn])
             q = np.clip(q + self._step(jp, e, q, lower, upper), lower, upper)
@@ -113,7 +99,10 @@ class PinSolver(IKSolver):
         return dq
 
 
-def _turn(current: np.ndarray, wanted: np.ndarray, jw: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+_no_turn: tuple[np.ndarray | None, np.ndarray | None] = (None, None)  # no orientation wished for
+
+
+def _turn(current: np.ndarray, wanted: np.ndarray, jw: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
     """(rotation vector taking ``current`` onto ``wanted``, the angular Jacobian with the twist
     about ``current`` removed: spinning about the axis itself neither helps nor matters)."""
     cross = np.cross(current, wanted)

@@ -14,12 +14,14 @@ hand off the target (a wish the limits cannot grant), a position-only pass follo
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import placo
 
 from stuart_bt.sim.robot import URDF_PATH
 
-from .ik import CONVERGED, POSITION_TOLERANCE, TARGET_AXES, Arm, IKSolver, Orientation
+from .ik import CONVERGED, TARGET_AXES, Arm, IKSolver, Orientation
 from .ik_arm import ArmChain, chain
 
 ORIENTATION_WEIGHT = 0.05  # relative to the position task's 1.0
@@ -41,7 +43,7 @@ class _ArmProblem:
             self.robot.set_velocity_limit(name, MAX_STEP / STEP_DT)
         self.solvers: dict[Orientation, tuple[placo.KinematicsSolver, object]] = {}
 
-    def solver(self, orientation: Orientation) -> tuple[placo.KinematicsSolver, object]:
+    def solver(self, orientation: Orientation) -> tuple[placo.KinematicsSolver, Any]:
         """(solver, its position task), built on first use."""
         if orientation not in self.solvers:
             solver = placo.KinematicsSolver(self.robot)
@@ -63,7 +65,7 @@ class _ArmProblem:
         return self.solvers[orientation]
 
     def set(self, q: np.ndarray) -> None:
-        for name, value in zip(self.joints, q):
+        for name, value in zip(self.joints, q, strict=True):
             self.robot.set_joint(name, float(value))
         self.robot.update_kinematics()
 
@@ -96,23 +98,9 @@ class PlacoSolver(IKSolver):
         ch = self.chain(arm)
         problem = self._problem(arm)
         goal = ch.to_root(target)
-        rng = np.random.default_rng(self.seed)
-        best_q, best_error, total = ch.clip(seed), np.inf, 0
-        for attempt in range(1 + self.restarts):
-            start = ch.clip(seed) if attempt == 0 else ch.random(rng)
-            q, error, iterations = self._descend(problem, goal, start, orientation)
-            total += iterations
-            if orientation and error > CONVERGED:
-                q, error, iterations = self._descend(problem, goal, q, None)
-                total += iterations
-            if error < best_error:
-                best_q, best_error = q, error
-            if error <= CONVERGED:
-                break
-        note = "" if best_error <= POSITION_TOLERANCE else (
-            f"did not converge in {attempt + 1} starts: the closest hand point was {best_error * 1000:.1f} mm "
-            "from the target (joint limits)")
-        return best_q, total, note
+        return self._best_of_restarts(
+            ch, seed, lambda start, oriented: self._descend(problem, goal, start, orientation if oriented else None),
+            bool(orientation))
 
     def _descend(self, problem: _ArmProblem, goal: np.ndarray, q: np.ndarray,
                  orientation: Orientation) -> tuple[np.ndarray, float, int]:

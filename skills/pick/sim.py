@@ -30,7 +30,8 @@ from stuart_bt.sim.world.client import WorldClient, WorldError
 from stuart_bt.world import Pose
 
 from .backend import PickBackend
-from .ik import IKResult, check_reachable, make_solver
+from .ik import IKResult, check_reachable
+from .solvers import make_solver
 
 TORSO_HEIGHT = desc.PELVIS_HEIGHT + desc.WAIST_HEIGHT  # torso_link above the floor, waist at zero
 PRE_GRASP = np.array([-0.08, 0.0, 0.10])  # 8 cm in front (towards the robot), 10 cm above
@@ -58,7 +59,7 @@ class Phased(Activity):
 
     resource = "arms"
 
-    def __init__(self, backend: "SimPick", phases: list[tuple[str, str, dict[str, Any], float]],
+    def __init__(self, backend: SimPick, phases: list[tuple[str, str, dict[str, Any], float]],
                  result: dict[str, Any], gate: bool = False, planned: dict[str, Any] | None = None) -> None:
         self.backend = backend
         self.phases = phases
@@ -163,9 +164,11 @@ class SimPick(PickBackend):
             seed = result.q
         self._lifted_from = float(obj["z"])
         self.rest_height[label] = float(obj["z"]) - self.call("surface", x=obj["x"], y=obj["y"])["z"]
-        phases = [
-            ("approach", "arm_trajectory", {"points": [{"t": 1.5, "joints": solutions["pre_grasp"].q}], "id": "approach"}, 1.5),
-            ("descend", "arm_trajectory", {"points": [{"t": 1.0, "joints": solutions["grasp"].q}], "id": "descend"}, 1.0),
+        phases: list[tuple[str, str, dict[str, Any], float]] = [
+            ("approach", "arm_trajectory",
+             {"points": [{"t": 1.5, "joints": solutions["pre_grasp"].q}], "id": "approach"}, 1.5),
+            ("descend", "arm_trajectory",
+             {"points": [{"t": 1.0, "joints": solutions["grasp"].q}], "id": "descend"}, 1.0),
             ("close", "hand", {"side": side, "closed": True}, 0.6),
             ("lift", "arm_trajectory", {"points": [{"t": 1.0, "joints": solutions["lift"].q}], "id": "lift"}, 1.0),
         ]
@@ -228,7 +231,7 @@ class SimPick(PickBackend):
         if reason is not None:
             raise DaemonError("unreachable", f"cannot put the {label} down {where} from here: {reason}")
         neutral = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]
-        phases = [
+        phases: list[tuple[str, str, dict[str, Any], float]] = [
             ("lower", "arm_trajectory", {"points": [{"t": 1.2, "joints": result.q}], "id": "lower"}, 1.2),
             ("open", "hand", {"side": side, "closed": False}, 0.6),
             ("retract", "arm_trajectory", {"points": [{"t": 1.5, "joints": neutral}], "id": "retract"}, 1.5),

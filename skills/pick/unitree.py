@@ -32,8 +32,9 @@ from stuart_bt.skills.gesture.keyframes import hand
 from stuart_bt.world import Pose
 
 from .dry import DryPick, Position, _lateral
-from .ik import check_reachable, make_solver
+from .ik import check_reachable
 from .sim import LIFT, PRE_GRASP, torso_to_world, world_to_torso
+from .solvers import make_solver
 
 OWN_OPTIONS = ("objects", "solver", "confirm", "ramp", "grasp_dz")
 Phase = tuple[str, Targets, float]  # (name, joint targets to reach, seconds)
@@ -113,9 +114,9 @@ class UnitreePick(DryPick):
         if self.held is not None:
             raise DaemonError("already_holding", f"already holding the {self.held} ({self.held_arm} arm); "
                                                  "release it first")
-        position = self._aim(label, position)
-        target = world_to_torso(np.array([position.x, position.y, position.z + self.grasp_dz]), robot_pose)
-        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, position) >= 0 else "right")
+        at = self._aim(label, position)
+        target = world_to_torso(np.array([at.x, at.y, at.z + self.grasp_dz]), robot_pose)
+        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, at) >= 0 else "right")
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         solutions = self._solve(label, side, points, target)
         open_hand, closed = hand(side, "open"), hand(side, "grip")
@@ -144,7 +145,7 @@ class UnitreePick(DryPick):
         seed = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]
         solutions: dict[str, Targets] = {}
         for name, point in points.items():
-            result = self.solver.solve(side, point, seed)  # type: ignore[arg-type]
+            result = self.solver.solve(side, point, seed)
             if not result.success:
                 raise DaemonError("unreachable", f"{label} {name}: no arm configuration: {result.reason}",
                                   data={"target_torso": [round(float(v), 4) for v in target]})

@@ -2,8 +2,8 @@
 
 import sys
 
-from stuart_bt.skills.tts import BACKENDS
 from stuart_bt.skills.runtime import main
+from stuart_bt.skills.tts import BACKENDS
 
 if __name__ == "__main__":
     sys.exit(main("tts", BACKENDS))

@@ -20,7 +20,7 @@ from .speech import SynthesisError, Synthesizer
 
 
 class AudioUtterance(Utterance):
-    def __init__(self, backend: "AudioTts", text: str, seconds: float, wav: str | None) -> None:
+    def __init__(self, backend: AudioTts, text: str, seconds: float, wav: str | None) -> None:
         super().__init__(backend, text)
         self.duration = seconds
         self.wav = wav

@@ -22,7 +22,7 @@ def speaking_time(text: str) -> float:
 class Utterance(TimedActivity):
     resource = "voice"
 
-    def __init__(self, backend: "DryTts", text: str) -> None:
+    def __init__(self, backend: DryTts, text: str) -> None:
         super().__init__(speaking_time(text))
         self._backend = backend
         self.text = text

@@ -16,18 +16,19 @@ English voice), ``piper_model`` (a local piper voice file; piper needs it), ``vo
 
 from __future__ import annotations
 
-from pathlib import Path
+import contextlib
 import shutil
 import tempfile
-from typing import Any
 import wave
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 from unitree_sdk2py.g1.audio.g1_audio_client import AudioClient
 
 from stuart_bt.clock import Clock
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import DaemonError, StartupError
+from stuart_bt.daemon.backend import DaemonError, Done, Progress, StartupError
 from stuart_bt.skills import vendor
 
 from .dry import DryTts, Utterance, speaking_time
@@ -98,7 +99,7 @@ class StreamedUtterance(Utterance):
             due = min(due, self.started + self.sent * self.tts.chunk_seconds - self.tts.lead)
         return due
 
-    def poll(self, now: float):  # type: ignore[override]
+    def poll(self, now: float) -> Progress | Done | None:
         self._send_due(now)
         return super().poll(now)
 
@@ -156,10 +157,8 @@ class UnitreeTts(DryTts):
         if self.engine == "robot":
             seconds = speaking_time(text)
             if self.synth.available:
-                try:
+                with contextlib.suppress(SynthesisError):  # the estimate will do: timing only
                     seconds = self.synth.synthesize(text).seconds
-                except SynthesisError:
-                    pass  # the estimate will do: timing only
             return RobotUtterance(self, text, seconds)
         try:
             audio = self.synth.synthesize(text)

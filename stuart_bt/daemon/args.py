@@ -7,7 +7,8 @@ dry, sim and unitree backends all reject the same bad input with the same words.
 from __future__ import annotations
 
 import math
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 from ..suggest import did_you_mean
 from ..world import Pose

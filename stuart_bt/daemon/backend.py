@@ -11,8 +11,9 @@ the motion already running.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable, ClassVar
+from typing import Any, ClassVar
 
 from ..clock import Clock
 
@@ -164,9 +165,9 @@ class Backend(ABC):
     def state(self) -> dict[str, Any]:
         """Small JSON-able state sent in every heartbeat (so keep it small)."""
 
-    def stop(self) -> None:
+    def stop(self) -> None:  # noqa: B027 - a hook: backends with hardware override it
         """Halt the hardware now. Every activity was already cancelled; a vendor backend still
         sends its own stop in case something moves that no activity knew about."""
 
-    def close(self) -> None:
+    def close(self) -> None:  # noqa: B027 - a hook: backends with connections override it
         """Release connections before the process exits."""

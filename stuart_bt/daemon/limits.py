@@ -14,7 +14,8 @@ event stream, the web view and the log, so bad lines are reported like this:
 from __future__ import annotations
 
 from collections import deque
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 FULL_WARNINGS = 5
 SUMMARY_PERIOD = 1.0  # wall seconds between two summaries

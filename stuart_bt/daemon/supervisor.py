@@ -17,6 +17,7 @@ Not thread-safe: one thread (the executor's) owns a supervisor.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import json
 import os
 import selectors
@@ -25,9 +26,10 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from ..catalogue import FAMILIES
 from ..clock import Clock
@@ -58,6 +60,12 @@ class _Daemon:
     log_offset: int = 0  # where this process's stderr starts in the log file
     failures: int = 0  # consecutive losses, for the backoff
     restart_at: float | None = None
+
+    @property
+    def process(self) -> subprocess.Popen[bytes]:
+        """The current process; only asked for once one was spawned."""
+        assert self.proc is not None, f"{self.family} daemon was never started"
+        return self.proc
 
 
 class Supervisor:
@@ -186,10 +194,8 @@ class Supervisor:
             for proc in alive:
                 _signal_group(proc, sig)
             for proc in alive:
-                try:
+                with contextlib.suppress(subprocess.TimeoutExpired):
                     proc.wait(wait)
-                except subprocess.TimeoutExpired:
-                    pass
         for d in self._daemons.values():
             if d.client.connected:
                 self._disconnect(d, "daemon_down", f"{d.family} daemon was shut down")
@@ -201,7 +207,7 @@ class Supervisor:
         self._zombies.clear()
         self._selector.close()
 
-    def __enter__(self) -> "Supervisor":
+    def __enter__(self) -> Supervisor:
         self.start()
         return self
 
@@ -254,7 +260,7 @@ class Supervisor:
                 if d.client.ready:
                     self._mark_ready(d, time.monotonic())
                     waiting.remove(d)
-                elif d.client.eof or d.proc.poll() is not None:
+                elif d.client.eof or d.process.poll() is not None:
                     problems.append(f"{d.family} daemon failed to start: {self._exit_reason(d)} before READY"
                                     f"{self._stderr_tail(d)}")
                     waiting.remove(d)
@@ -306,7 +312,7 @@ class Supervisor:
     def _loss(self, d: _Daemon, now: float) -> tuple[str, str, str] | None:
         """``(error code, state, reason)`` if the daemon is lost: exited, never ready, flooding,
         silent, or not answering its commands; None while it is healthy."""
-        if d.client.eof or d.proc.poll() is not None:
+        if d.client.eof or d.process.poll() is not None:
             return "daemon_died", "died", f"{d.family} daemon {self._exit_reason(d)}"
         if d.phase == "starting":
             if now - d.spawned_at > self.handshake_timeout:
@@ -340,10 +346,10 @@ class Supervisor:
         """The daemon crashed or hung: fail its requests, kill what is left, schedule a restart.
         A live one is first told to stop (best effort: one line into its stdin, never blocking),
         so a daemon that still reads stops the robot before it is killed."""
-        if d.proc.poll() is None:
+        if d.process.poll() is None:
             d.client.tell_stop()
-            _signal_group(d.proc, signal.SIGKILL)
-            self._zombies.append(d.proc)
+            _signal_group(d.process, signal.SIGKILL)
+            self._zombies.append(d.process)
         failed = self._disconnect(d, code, reason)
         d.phase = "down"
         delay = self._schedule_restart(d, now)
@@ -366,7 +372,7 @@ class Supervisor:
     def _exit_reason(self, d: _Daemon) -> str:
         """``exited with signal SIGKILL`` / ``exited with code 2`` / ``closed its output``."""
         try:
-            code = d.proc.wait(EXIT_WAIT)
+            code = d.process.wait(EXIT_WAIT)
         except subprocess.TimeoutExpired:
             return "closed its output"
         if code < 0:
@@ -390,7 +396,5 @@ class Supervisor:
 
 def _signal_group(proc: subprocess.Popen[bytes], sig: int) -> None:
     """Signal the daemon's whole session (it leads it), so helpers it spawned go too."""
-    try:
+    with contextlib.suppress(ProcessLookupError, PermissionError):
         os.killpg(proc.pid, sig)
-    except (ProcessLookupError, PermissionError):
-        pass

@@ -22,7 +22,7 @@ from .domain import (
     parse_task_text,
     project_domain,
 )
-from .explain import add_plan_command, render_tree
+from .explain import render_tree
 from .hooks import Hook, HookRegistry
 from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, PlanningFailed, PlanStats, TaskNode
 from .planner import Planner
@@ -31,6 +31,6 @@ from .state import State, lab_world
 __all__ = [
     "Domain", "DomainLoadError", "Failure", "Hook", "HookRegistry", "MethodAttempt", "Plan", "PlanStats", "Planner",
     "PlanningBudgetExceeded", "PlanningFailed", "State", "TaskArgumentError", "TaskCall", "TaskNode",
-    "add_plan_command", "lab_world", "load_domain", "load_domain_text", "parse_task_text", "project_domain",
+    "lab_world", "load_domain", "load_domain_text", "parse_task_text", "project_domain",
     "render_tree",
 ]

@@ -642,7 +642,7 @@ class Domain:
         if len(args) > len(params):
             raise TaskArgumentError(f"{signature} takes {len(params)} argument(s), got {len(args)}")
         bound: dict[str, Any] = {}
-        for p, value in zip(params, args):
+        for p, value in zip(params, args, strict=False):
             bound[p.name] = value
         names = [p.name for p in params]
         for key, value in kwargs.items():
@@ -897,6 +897,17 @@ class _Loader:
         ack_with = (self.text(top["ack_with"][1], "ack_with") if "ack_with" in top else None) or "acknowledge"
         if "state" in top:
             self.read_state(top["state"][1])
+        sections = self.declare_tasks(top)
+        definitions = self.define_tasks(sections)
+        self.check_ack(ack_with, definitions)
+        if self.log:
+            raise DomainLoadError(self.log.in_reading_order())
+        return Domain(name or "domain", self.file, self.state_vars, definitions, self.hooks, ack_with,
+                      description or "")
+
+    def declare_tasks(self, top: dict[str, tuple[ScalarNode, Node]]) -> dict[str, dict[str, tuple[ScalarNode, Node]]]:
+        """First pass: every task's name, kind and parameters, so bodies may name tasks that
+        are defined later in the file."""
         sections: dict[str, dict[str, tuple[ScalarNode, Node]]] = {}
         for section in ("primitives", "tasks"):
             sections[section] = self.items(top[section][1], section) if section in top else {}
@@ -910,22 +921,20 @@ class _Loader:
                 self.params[tname] = self.read_params(value, f"{section}.{tname}")
         if not sections["tasks"] and not sections["primitives"]:
             self.log.add(Location(self.file, 1, 1), "the domain defines no tasks ('primitives:' and 'tasks:')")
+        return sections
+
+    def define_tasks(self, sections: dict[str, dict[str, tuple[ScalarNode, Node]]]) -> dict[str, Definition]:
+        """Second pass: each declared task's body."""
         definitions: dict[str, Definition] = {}
         for tname, (key, value) in sections["primitives"].items():
-            if self.kinds.get(tname) == "primitive":
-                prim = self.read_primitive(tname, key, value)
-                if prim is not None:
-                    definitions[tname] = prim
+            prim = self.read_primitive(tname, key, value) if self.kinds.get(tname) == "primitive" else None
+            if prim is not None:
+                definitions[tname] = prim
         for tname, (key, value) in sections["tasks"].items():
-            if self.kinds.get(tname) == "compound":
-                task = self.read_task(tname, key, value)
-                if task is not None:
-                    definitions[tname] = task
-        self.check_ack(ack_with, definitions)
-        if self.log:
-            raise DomainLoadError(self.log.in_reading_order())
-        return Domain(name or "domain", self.file, self.state_vars, definitions, self.hooks, ack_with,
-                      description or "")
+            task = self.read_task(tname, key, value) if self.kinds.get(tname) == "compound" else None
+            if task is not None:
+                definitions[tname] = task
+        return definitions
 
     def read_state(self, node: Node) -> None:
         for vname, (key, value) in self.items(node, "state").items():
@@ -1114,77 +1123,90 @@ class _Loader:
         if not isinstance(node, MappingNode):
             return None
         scope = self.scope(tname)
-        if "skill" not in spec:
-            self.err(key, f"primitive {tname!r} needs 'skill:' (one of {', '.join(SKILLS)})", path)
-            return None
-        skill = self.text(spec["skill"][1], path, "a skill name")
+        skill = self.read_skill(tname, key, spec, path)
         if skill is None:
             return None
-        if skill not in SKILLS:
-            self.err(spec["skill"][1], f"unknown skill {skill!r}{did_you_mean(skill, SKILLS)} "
-                                       f"(skills: {', '.join(SKILLS)})", path)
-            return None
-        args: dict[str, Value] | Value = {}
-        if "args" in spec:
-            anode = spec["args"][1]
-            keys = {str(k.value) for k, _ in getattr(anode, "value", []) if isinstance(k, ScalarNode)}
-            if isinstance(anode, MappingNode) and "hook" in keys and LEAVES[skill].param("hook") is None:
-                hook_value = self.read_value(anode, scope, f"{path}.args")
-                if hook_value is not None:
-                    args = hook_value
-            else:
-                values: dict[str, Value] = {}
-                complete = True
-                for aname, (akey, avalue) in self.items(anode, f"{path}.args").items():
-                    if LEAVES[skill].param(aname) is None:
-                        self.err(akey, f"skill {skill!r} has no parameter {aname!r}"
-                                       f"{did_you_mean(aname, LEAVES[skill].param_names)} "
-                                       f"(parameters: {', '.join(LEAVES[skill].param_names) or 'none'})", path)
-                        complete = False
-                        continue
-                    value = self.read_value(avalue, scope, f"{path}.args.{aname}")
-                    if value is not None:
-                        values[aname] = value
-                    else:
-                        complete = False
-                args = values
-                problem = check_skill_args(skill, values) if complete else None
-                if problem:
-                    self.err(anode, problem, path)
-        else:
-            problem = check_skill_args(skill, [])
-            if problem:
-                self.err(key, f"{problem}: give them under 'args:'", path)
+        args = self.read_skill_args(skill, key, spec, scope, path)
         pre = self.read_conditions(spec["pre"][1], scope, f"{path}.pre") if "pre" in spec else []
-        effects: list[tuple[Target, Value]] = []
-        if "effects" in spec:
-            for tkey, (tnode, vnode) in self.items(spec["effects"][1], f"{path}.effects").items():
-                target = self.read_target(tkey, tnode, scope, f"{path}.effects")
-                value = self.read_value(vnode, scope, f"{path}.effects.{tkey}")
-                if target is not None and value is not None:
-                    effects.append((target, value))
-        remove: list[Target] = []
-        if "remove" in spec:
-            rnode = spec["remove"][1]
-            for item in rnode.value if isinstance(rnode, SequenceNode) else [rnode]:
-                text = self.text(item, f"{path}.remove", "a target such as objects[obj]")
-                target = self.read_target(text, item, scope, f"{path}.remove") if text else None
-                if target is not None and target.key is None:
-                    self.err(item, f"'remove' takes keys of mapping variables, e.g. {target.var}[obj]",
-                             f"{path}.remove")
-                elif target is not None:
-                    remove.append(target)
-        optional = False
-        if "optional" in spec:
-            value = self.python(spec["optional"][1], path)
-            if not isinstance(value, bool):
-                self.err(spec["optional"][1], "'optional' must be true or false", path)
-            else:
-                optional = value
+        effects = self.read_effects(spec["effects"][1], scope, path) if "effects" in spec else []
+        remove = self.read_remove(spec["remove"][1], scope, path) if "remove" in spec else []
+        optional = self.read_flag(spec["optional"][1], "optional", path) if "optional" in spec else False
         skip_if = self.read_skip_if(spec["skip_if"][1], scope, path) if "skip_if" in spec else None
         doc = (self.text(spec["doc"][1], path) or "") if "doc" in spec else ""
         return PrimitiveDef(tname, self.params.get(tname, []), skill, args, pre, effects, remove, optional, skip_if,
                             doc, self.loc(key))
+
+    def read_skill(self, tname: str, key: ScalarNode, spec: dict[str, tuple[ScalarNode, Node]],
+                   path: str) -> str | None:
+        if "skill" not in spec:
+            self.err(key, f"primitive {tname!r} needs 'skill:' (one of {', '.join(SKILLS)})", path)
+            return None
+        skill = self.text(spec["skill"][1], path, "a skill name")
+        if skill is not None and skill not in SKILLS:
+            self.err(spec["skill"][1], f"unknown skill {skill!r}{did_you_mean(skill, SKILLS)} "
+                                       f"(skills: {', '.join(SKILLS)})", path)
+            return None
+        return skill
+
+    def read_skill_args(self, skill: str, key: ScalarNode, spec: dict[str, tuple[ScalarNode, Node]], scope: Scope,
+                        path: str) -> dict[str, Value] | Value:
+        """The leaf's parameters: a mapping checked against the skill's catalogue entry, or one
+        hook call that returns them (``args: {hook: ...}`` for a skill with no ``hook`` parameter)."""
+        if "args" not in spec:
+            problem = check_skill_args(skill, [])
+            if problem:
+                self.err(key, f"{problem}: give them under 'args:'", path)
+            return {}
+        anode = spec["args"][1]
+        keys = {str(k.value) for k, _ in getattr(anode, "value", []) if isinstance(k, ScalarNode)}
+        if isinstance(anode, MappingNode) and "hook" in keys and LEAVES[skill].param("hook") is None:
+            hook_value = self.read_value(anode, scope, f"{path}.args")
+            return hook_value if hook_value is not None else {}
+        values: dict[str, Value] = {}
+        complete = True
+        for aname, (akey, avalue) in self.items(anode, f"{path}.args").items():
+            if LEAVES[skill].param(aname) is None:
+                self.err(akey, f"skill {skill!r} has no parameter {aname!r}"
+                               f"{did_you_mean(aname, LEAVES[skill].param_names)} "
+                               f"(parameters: {', '.join(LEAVES[skill].param_names) or 'none'})", path)
+                complete = False
+                continue
+            value = self.read_value(avalue, scope, f"{path}.args.{aname}")
+            if value is not None:
+                values[aname] = value
+            else:
+                complete = False
+        problem = check_skill_args(skill, values) if complete else None
+        if problem:
+            self.err(anode, problem, path)
+        return values
+
+    def read_effects(self, node: Node, scope: Scope, path: str) -> list[tuple[Target, Value]]:
+        effects: list[tuple[Target, Value]] = []
+        for tkey, (tnode, vnode) in self.items(node, f"{path}.effects").items():
+            target = self.read_target(tkey, tnode, scope, f"{path}.effects")
+            value = self.read_value(vnode, scope, f"{path}.effects.{tkey}")
+            if target is not None and value is not None:
+                effects.append((target, value))
+        return effects
+
+    def read_remove(self, node: Node, scope: Scope, path: str) -> list[Target]:
+        remove: list[Target] = []
+        for item in node.value if isinstance(node, SequenceNode) else [node]:
+            text = self.text(item, f"{path}.remove", "a target such as objects[obj]")
+            target = self.read_target(text, item, scope, f"{path}.remove") if text else None
+            if target is not None and target.key is None:
+                self.err(item, f"'remove' takes keys of mapping variables, e.g. {target.var}[obj]", f"{path}.remove")
+            elif target is not None:
+                remove.append(target)
+        return remove
+
+    def read_flag(self, node: Node, name: str, path: str) -> bool:
+        value = self.python(node, path)
+        if not isinstance(value, bool):
+            self.err(node, f"'{name}' must be true or false", path)
+            return False
+        return value
 
     def read_target(self, text: str | None, node: Node, scope: Scope, path: str) -> Target | None:
         if text is None:
@@ -1301,6 +1323,7 @@ class _Loader:
         items = node.value if isinstance(node, SequenceNode) else [node]
         out: list[Subtask] = []
         for item in items:
+            sub: Subtask | None
             if isinstance(item, MappingNode):
                 keys = {str(k.value) for k, _ in item.value if isinstance(k, ScalarNode)}
                 if "for" in keys:

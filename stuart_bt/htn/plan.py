@@ -18,7 +18,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from .domain import ClauseFailure, format_value, short
+from .domain import ClauseFailure, format_value
 from .state import State, jsonable
 
 if TYPE_CHECKING:
@@ -319,13 +319,3 @@ class PlanningBudgetExceeded(Exception):
     def to_dict(self) -> dict[str, Any]:
         return {"ok": False, "reason": str(self), "limit": self.limit, "budget": self.budget, "steps": self.steps,
                 "current": self.current, "stats": self.stats.to_dict()}
-
-
-def describe_changes(changes: list[tuple[str, Any]] | None) -> str:
-    """``at='kitchen', held=null, -objects['bottle']`` for the explanation."""
-    if not changes:
-        return ""
-    parts = []
-    for target, value in changes:
-        parts.append(target if target.startswith("-") else f"{target}={short(value)}")
-    return ", ".join(parts)

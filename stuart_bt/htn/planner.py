@@ -220,9 +220,9 @@ class _Search:
         for t in templates:
             if isinstance(t, CallTemplate):
                 defn = self.domain.definitions[t.name]
-                args = [a.evaluate(lookup) for a in t.args]
+                positional = [a.evaluate(lookup) for a in t.args]
                 kwargs = {k: v.evaluate(lookup) for k, v in t.kwargs.items()}
-                out.append(self.new_node(defn, self.domain.bind_args(defn, args, kwargs), parent))
+                out.append(self.new_node(defn, self.domain.bind_args(defn, positional, kwargs), parent))
             elif isinstance(t, ForTemplate):
                 items = t.iterable.evaluate(lookup)
                 if not isinstance(items, (list, tuple)):

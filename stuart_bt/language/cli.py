@@ -27,7 +27,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any, BinaryIO
 
 from ..jsonfile import to_json
@@ -99,7 +99,7 @@ def cmd_parse(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def read_lines(stream: BinaryIO, limit: int = MAX_LINE_BYTES):  # type: ignore[no-untyped-def]
+def read_lines(stream: BinaryIO, limit: int = MAX_LINE_BYTES) -> Iterator[tuple[str, bool]]:
     """(text, truncated) per line of a byte stream: the line ending removed, invalid UTF-8
     replaced, at most ``limit`` bytes kept of a longer line (the rest is read and dropped)."""
     while True:

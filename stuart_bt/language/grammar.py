@@ -111,7 +111,7 @@ TRAILING = frozenset({"please", "now", "quickly", "slowly", "carefully", "immedi
                       "right", "away", "straight", "real", "quick", "for", "me", "us", "as", "well", "if", "can",
                       "could", "will", "would", "possible", "buddy", "mate", "pal", "robot", "friend", "then",
                       "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over", "shall",
-                      "we", "yeah", "alright", "later", "soon", "today", "tonight", "tomorrow", "sometime"})
+                      "we", "yeah", "alright", "later", "today", "tonight", "tomorrow", "sometime"})
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
                 "which", "whose", "whom", "whatever", "wat"})
@@ -144,7 +144,8 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("i", "was", "wondering", "if", "you", "could"), ("i", "wonder", "if", "you", "could"),
     ("i", "was", "wondering", "whether", "you", "could"), ("i", "was", "hoping", "you", "could"),
     ("i", "hope", "you", "can"), ("any", "chance", "you", "could"), ("is", "there", "any", "chance", "you", "could"),
-    ("would", "you", "kindly"), ("be", "a", "dear", "and"), ("be", "a", "good", "robot", "and"), ("now",), ("ok",), ("so",), ("well",), ("yes",), ("yeah",), ("also",),
+    ("would", "you", "kindly"), ("be", "a", "dear", "and"), ("be", "a", "good", "robot", "and"),
+    ("now",), ("ok",), ("so",), ("well",), ("yes",), ("yeah",), ("also",),
     ("hey",), ("quickly",), ("quick",), ("right", "now"), ("maybe",), ("perhaps",), ("actually",), ("oh",),
     ("go", "ahead", "and"), ("lets",), ("let", "us"), ("let", "me", "see", "you"),
     ("i", "want", "you", "to"), ("i", "need", "you", "to"), ("i", "would", "like", "you", "to"),
@@ -189,7 +190,8 @@ CONNECTORS: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("after", "which"), ("afterwards",), ("afterward",), ("finally",), ("lastly",), ("first",), ("firstly",),
     ("first", "of", "all"), ("secondly",), ("thirdly",), ("next",), ("then", "after", "that"), ("once", "done"),
     ("when", "done"), ("once", "there"), ("when", "there"), ("once", "you", "are", "there"),
-    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "are", "there"), ("when", "youre", "there"),
+    ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "are", "there"),
+    ("when", "youre", "there"),
     ("once", "you", "get", "there"), ("when", "youre", "done"), ("once", "youre", "done"),
     ("when", "you", "are", "done"), ("once", "youve", "done", "that"), ("when", "youve", "done", "that"),
     ("once", "thats", "done"), ("when", "thats", "done"), ("followed", "by"), ("and", "followed", "by"),
@@ -286,7 +288,8 @@ MOTION_VERBS = frozenset({"go", "move", "walk", "head", "drive", "travel", "proc
                           "jog", "hurry", "rush", "return", "advance", "roll", "scoot", "shift", "slide", "strafe",
                           "sidestep", "wander", "stroll", "march", "visit", "approach", "reach", "enter", "step",
                           "back", "get", "retreat", "creep", "shuffle", "inch", "hop", "make", "scurry", "dash",
-                          "sprint", "zoom", "trot", "amble", "journey", "relocate", "continue", "goto", "gp", "nudge", "edge",
+                          "sprint", "zoom", "trot", "amble", "journey", "relocate", "continue", "goto", "gp", "nudge",
+                          "edge",
                           "budge", "crawl", "glide", "push", "ease", "wheel", "pop", "nip"})
 TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "face", "revolve", "veer", "swing"})
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
@@ -315,7 +318,8 @@ STRONG_VERBS = frozenset({"go", "turn", "move", "walk", "head", "pick", "grab", 
 # a verb followed by one of its particles starts a new command inside a noun phrase ("... the
 # kitchen look for the apple"); as a pair these are not read as nouns ("look" alone may be)
 VERB_PARTICLES = frozenset({
-    ("look", "for"), ("search", "for"), ("hunt", "for"), ("check", "for"), ("pick", "up"), ("back", "up"), ("step", "back"),
+    ("look", "for"), ("search", "for"), ("hunt", "for"), ("check", "for"), ("pick", "up"), ("back", "up"),
+    ("step", "back"),
     ("step", "forward"), ("hold", "on"), ("hang", "on"), ("wait", "there"), ("wait", "for"), ("stay", "there"),
     ("take", "a"), ("turn", "around"), ("spin", "around"), ("face", "the"), ("shake", "hands"),
     ("give", "me"), ("hand", "me"), ("bring", "me"), ("get", "me"), ("fetch", "me"), ("grab", "me"),
@@ -1333,28 +1337,16 @@ def _family(verb: str) -> Callable[[_State, int], Result] | None:
 
 
 _DISPATCH: dict[str, Callable[[_State, int], Result]] = {}
-for _v in MOTION_VERBS:
-    _DISPATCH[_v] = _motion
-for _v in TURN_VERBS:
-    _DISPATCH[_v] = _turn
-for _v in PICK_VERBS:
-    _DISPATCH[_v] = _pick
-for _v in FIND_VERBS:
-    _DISPATCH[_v] = _find
-for _v in STOP_VERBS:
-    _DISPATCH[_v] = _stop
-for _v in GESTURE_VERBS:
-    _DISPATCH[_v] = _gesture
-for _v in LIGHT_VERBS:
-    _DISPATCH[_v] = _do
+for _verbs, _reader in ((MOTION_VERBS, _motion), (TURN_VERBS, _turn), (PICK_VERBS, _pick), (FIND_VERBS, _find),
+                        (STOP_VERBS, _stop), (GESTURE_VERBS, _gesture), (LIGHT_VERBS, _do)):
+    _DISPATCH.update(dict.fromkeys(_verbs, _reader))
 _DISPATCH["get"] = _motion  # "get to the kitchen" / "get me a cup" (it hands over to _pick)
 _DISPATCH["take"] = _take = _do  # "take me to", "take a step", "take a left", else pick
 _DISPATCH["make"] = _do
 _DISPATCH["give"] = _do
 _DISPATCH["raise"] = _gesture
 _DISPATCH["lift"] = _pick
-for _v in GUIDE_VERBS:
-    _DISPATCH[_v] = _guide
+_DISPATCH.update(dict.fromkeys(GUIDE_VERBS, _guide))
 _DISPATCH["have"] = _find_noun  # "have a look for ..." (and nothing else: "have a seat")
 
 
@@ -1786,10 +1778,10 @@ class Grammar:
             if held and made is not held:
                 out.extend(held)
                 held = []
-            for a, tg, *_ in specs:
-                if a in (PICK, FIND) and tg not in ("me", "it"):
+            for act, tg, *_ in specs:
+                if act in (PICK, FIND) and tg not in ("me", "it"):
                     s.last_object = tg
-                elif a == NAVIGATE:
+                elif act == NAVIGATE:
                     s.last_place = tg
             s.last_action = specs[-1][0]
             s.first = False

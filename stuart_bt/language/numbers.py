@@ -116,46 +116,43 @@ def _words(toks: Sequence[str], i: int) -> tuple[float, int] | None:
         current, j, last = 1, j + 1, "ones"
     while j < n:
         t = toks[j]
-        if t in ONES:
-            v = ONES[t]
-            kind = "ones" if v < 10 else "teen"
-            if not last:
-                current = v
-            elif kind == "ones" and last == "tens":
-                current += v  # "forty five"
-            elif last in ("hundred", "and"):
-                current += v  # "a hundred five", "one hundred and fifteen"
-            elif kind == "teen" and last == "ones" and j == i + 1 and current > 0:
-                current = current * 100 + v  # "one fifteen"
-            else:
-                break
-            last = kind
-        elif t in TENS:
-            v = TENS[t]
-            if not last:
-                current = v
-            elif last in ("hundred", "and"):
-                current += v
-            elif last == "ones" and j == i + 1 and current > 0:
-                current = current * 100 + v  # "one eighty"
-            else:
-                break
-            last = "tens"
-        elif t == "hundred" and last in ("ones", "teen") and current < 100:
-            current *= 100
-            last = "hundred"
-        elif t == "thousand" and last and last != "and":
+        if t == "thousand" and last and last != "and":
             total += current * 1000
             current, last = 0, "hundred"
-        elif t == "and" and last == "hundred" and j + 1 < n and (
-                toks[j + 1] in ONES or toks[j + 1] in TENS):
+        elif t == "and" and last == "hundred" and j + 1 < n and (toks[j + 1] in ONES or toks[j + 1] in TENS):
             last = "and"  # "one hundred and eighty"
         else:
-            break
+            step = _next_word(t, last, current, second=j == i + 1)
+            if step is None:
+                break
+            current, last = step
         j += 1
     if not last:
         return None
     return float(total + current), j
+
+
+def _next_word(t: str, last: str, current: int, second: bool) -> tuple[int, str] | None:
+    """``current`` with the number word ``t`` added after a word of kind ``last`` (``second``:
+    ``t`` is the number's second word): (the new value, the kind of ``t``), or ``None`` when
+    ``t`` does not carry the number on."""
+    if t == "hundred":
+        return (current * 100, "hundred") if last in ("ones", "teen") and current < 100 else None
+    if t in ONES:
+        value = ONES[t]
+        kind = "ones" if value < 10 else "teen"
+        follows = (kind == "ones" and last == "tens")  # "forty five"
+    elif t in TENS:
+        value, kind, follows = TENS[t], "tens", False
+    else:
+        return None
+    if not last:
+        return value, kind
+    if follows or last in ("hundred", "and"):  # "a hundred five", "one hundred and fifteen"
+        return current + value, kind
+    if last == "ones" and second and current > 0 and kind != "ones":
+        return current * 100 + value, kind  # "one fifteen", "one eighty"
+    return None
 
 
 def _after_point(toks: Sequence[str], k: int) -> tuple[float, int] | None:
@@ -176,52 +173,62 @@ def read_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
     fractions ("half", "a half", "three quarters", "two and a half"), vague amounts ("a couple
     of", "a few"). Returns (value, next index) or ``None``. A lone "a"/"an" is not a number here:
     "a metre" is read by :func:`read_quantity`, which knows a unit follows."""
+    if i >= len(toks):
+        return None
+    got = _leading_number(toks, i)
+    if got is None:
+        return None
+    value, j = got
     n = len(toks)
-    if i >= n:
-        return None
-    t = toks[i]
-    value: float | None = None
-    j = i
-    d = _digits(t)
-    if d is not None:
-        value, j = d, i + 1
-    elif t in ("a", "an") and i + 1 < n:
-        nxt = toks[i + 1]
-        if nxt in FRACTIONS:  # "a half", "a quarter"
-            value, j = FRACTIONS[nxt], i + 2
-        elif nxt in VAGUE:  # "a couple of", "a few"
-            value, j = VAGUE[nxt], i + 2
-            if j < n and toks[j] == "of":
-                j += 1
-        elif nxt in ("hundred", "thousand"):
-            got = _words(toks, i)
-            if got:
-                value, j = got
-    elif t in VAGUE:
-        value, j = VAGUE[t], i + 1
-        if j < n and toks[j] == "of":
-            j += 1
-    elif t in FRACTIONS and t not in ("third", "thirds"):  # "half", "quarter" ("third" is an ordinal)
-        value, j = FRACTIONS[t], i + 1
-    elif t == "point":  # "point five": the "zero" before the point is often not said
-        got = _after_point(toks, i + 1)
-        if got is not None:
-            value, j = got
-    else:
-        got = _words(toks, i)
-        if got:
-            value, j = got
-            after = _after_point(toks, j + 1) if j + 1 < n and toks[j] == "point" else None
-            if after is not None:  # "one point five", "zero point seven five"
-                value, j = int(value) + after[0], after[1]
-    if value is None:
-        return None
-    if j < n and toks[j] in FRACTIONS and value == int(value) and value >= 1 and t not in ("a", "an"):
+    if j < n and toks[j] in FRACTIONS and value == int(value) and value >= 1 and toks[i] not in ("a", "an"):
         value, j = value * FRACTIONS[toks[j]], j + 1  # "three quarters", "two thirds"
     frac = _fraction_after_and(toks, j)
     if frac is not None and not (j < n and toks[j] == "and" and value != int(value)):
         value, j = value + frac[0], frac[1]  # "one and a half", "2 and a half"
     return value, j
+
+
+def _leading_number(toks: Sequence[str], i: int) -> tuple[float, int] | None:
+    """The number that starts at ``toks[i]``, before any fraction that may follow it."""
+    t = toks[i]
+    d = _digits(t)
+    if d is not None:
+        return d, i + 1
+    if t in ("a", "an"):
+        return _after_article(toks, i)
+    if t in VAGUE:
+        return VAGUE[t], _skip_of(toks, i + 1)
+    if t in FRACTIONS and t not in ("third", "thirds"):  # "half", "quarter" ("third" is an ordinal)
+        return FRACTIONS[t], i + 1
+    if t == "point":  # "point five": the "zero" before the point is often not said
+        return _after_point(toks, i + 1)
+    got = _words(toks, i)
+    if got is None:
+        return None
+    value, j = got
+    after = _after_point(toks, j + 1) if j + 1 < len(toks) and toks[j] == "point" else None
+    if after is not None:  # "one point five", "zero point seven five"
+        return int(value) + after[0], after[1]
+    return value, j
+
+
+def _after_article(toks: Sequence[str], i: int) -> tuple[float, int] | None:
+    """ "a half", "a couple of", "a few", "a hundred": a number that starts with "a"/"an"."""
+    if i + 1 >= len(toks):
+        return None
+    nxt = toks[i + 1]
+    if nxt in FRACTIONS:  # "a half", "a quarter"
+        return FRACTIONS[nxt], i + 2
+    if nxt in VAGUE:  # "a couple of", "a few"
+        return VAGUE[nxt], _skip_of(toks, i + 2)
+    if nxt in ("hundred", "thousand"):
+        return _words(toks, i)
+    return None
+
+
+def _skip_of(toks: Sequence[str], j: int) -> int:
+    """Past an "of" at ``j`` ("a couple of metres")."""
+    return j + 1 if j < len(toks) and toks[j] == "of" else j
 
 
 def _pi(toks: Sequence[str], i: int, number: tuple[float, int] | None) -> tuple[float, int] | None:

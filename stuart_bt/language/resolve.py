@@ -322,7 +322,8 @@ class Resolver:
         if g is None:
             close = tuple(difflib.get_close_matches(spoken.lower(), gestures.names(), n=3, cutoff=0.5))
             return Resolution(spoken, "gesture", None, "unknown", f"no gesture called {spoken!r}", close)
-        return Resolution(spoken, "gesture", g.name, "library", f"{spoken!r} plays {g.name!r} (action id {g.action_id})")
+        plays = f"{spoken!r} plays {g.name!r} (action id {g.action_id})"
+        return Resolution(spoken, "gesture", g.name, "library", plays)
 
     # -- intents -----------------------------------------------------------------------------------
     def resolve(self, intent: TaskIntent) -> Resolution | None:

@@ -115,8 +115,9 @@ def default_tolerance(key: str) -> float:
 @dataclass(slots=True)
 class WakeMatch:
     """What the filter found. ``command`` is the text after the wake phrase as written (the
-    punctuation and spaces between them removed, a final "?" kept); ``phrase`` is the wake phrase as written. (Not frozen: it is
-    made once per utterance and a frozen dataclass costs a microsecond more to build.)"""
+    punctuation and spaces between them removed, a final "?" kept); ``phrase`` is the wake phrase
+    as written. (Not frozen: it is made once per utterance and a frozen dataclass costs a
+    microsecond more to build.)"""
 
     woke: bool
     command: str = ""

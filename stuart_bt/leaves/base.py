@@ -15,6 +15,7 @@ event stream (``leaf`` events), so reports and tests can ask what happened and w
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
@@ -41,11 +42,14 @@ class DaemonRequest(Protocol):
 
 
 class DaemonClientPort(Protocol):
-    connected: bool  # a daemon process is attached (it may still be starting up)
+    @property
+    def connected(self) -> bool:
+        """A daemon process is attached (it may still be starting up)."""
 
     def request(self, cmd: str, args: dict[str, Any], path: str | None = None) -> DaemonRequest: ...
 
-    def cancel(self, request: DaemonRequest) -> Any: ...
+    def cancel(self, request: Any) -> object:  # a request this client made
+        ...
 
 
 class DaemonPort(Protocol):
@@ -53,7 +57,7 @@ class DaemonPort(Protocol):
 
     def client(self, family: str) -> DaemonClientPort: ...
 
-    def stop_all(self) -> list[DaemonRequest]: ...
+    def stop_all(self) -> Sequence[DaemonRequest]: ...
 
 
 @dataclass

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 from py_trees.common import Status
 
 from .. import expr
 from ..blackboard import render_template
-from .base import DaemonRequest, Leaf, LeafFailure, RunContext
 from ..tree.spec import NodeSpec
+from .base import DaemonRequest, Leaf, LeafFailure, RunContext
 
 
 class Wait(Leaf):
@@ -36,7 +37,7 @@ class Stop(Leaf):
     def start(self) -> Status | None:
         if self.ctx.daemons is None:
             return Status.SUCCESS
-        self._requests: list[DaemonRequest] = self.ctx.daemons.stop_all()
+        self._requests: Sequence[DaemonRequest] = self.ctx.daemons.stop_all()
         return None
 
     def step(self) -> Status:

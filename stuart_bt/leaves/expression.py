@@ -12,9 +12,9 @@ from typing import Any
 
 from .. import gestures
 from ..suggest import did_you_mean
-from .base import LeafFailure, SkillLeaf, RunContext
 from ..tree.include_params import base_dir_of
 from ..tree.spec import NodeSpec
+from .base import LeafFailure, RunContext, SkillLeaf
 
 
 class Speak(SkillLeaf):

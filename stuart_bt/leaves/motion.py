@@ -75,10 +75,7 @@ class Turn(SkillLeaf):
     kind = "turn"
 
     def command(self) -> tuple[str, dict[str, Any]]:
-        if self.has("degrees"):
-            angle = math.radians(float(self.param("degrees")))
-        else:
-            angle = float(self.param("angle"))
+        angle = math.radians(float(self.param("degrees"))) if self.has("degrees") else float(self.param("angle"))
         return "turn", {"angle": angle}
 
     def on_done(self, result: dict[str, Any]) -> None:

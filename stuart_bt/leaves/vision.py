@@ -47,9 +47,9 @@ class Observe(_LookingLeaf):
     def on_done(self, result: dict[str, Any]) -> None:
         best: dict[str, dict[str, Any]] = {}
         for d in result.get("detections") or []:
-            if isinstance(d, dict) and isinstance(d.get("world"), list) and len(d["world"]) == 3:
-                if d["label"] not in best or d.get("confidence", 0) > best[d["label"]].get("confidence", 0):
-                    best[d["label"]] = d
+            placed = isinstance(d, dict) and isinstance(d.get("world"), list) and len(d["world"]) == 3
+            if placed and (d["label"] not in best or d.get("confidence", 0) > best[d["label"]].get("confidence", 0)):
+                best[d["label"]] = d
         for label, d in best.items():
             x, y, z = d["world"]
             self.remember(label, {"x": x, "y": y, "z": z}, float(d.get("confidence", 1.0)), source="vision")

@@ -31,6 +31,7 @@ from collections.abc import Callable
 from typing import Any, TextIO
 
 from ..events import Event
+from ..executor import RunOutcome
 from ..tree.render import render
 from ..tree.spec import NodeSpec, TreeSpec
 from .cli import add_llm_arguments, llm_options
@@ -69,7 +70,7 @@ class ChatExecutor(MissionExecutor):
             self._worker.join(0.02)
         super().close()
 
-    def _run_tree(self, spec: TreeSpec, mission: Mission | None):  # type: ignore[override]
+    def _run_tree(self, spec: TreeSpec, mission: Mission | None) -> tuple[RunOutcome, set[str], str | None]:
         if mission is not None:  # speech-only trees (replies, explanations) are not missions
             self.tree = spec
             self._on_tree(spec, mission)
@@ -128,7 +129,8 @@ def describe(event: Event) -> str | None:
         extra = d.get("reason") or d.get("status") or ", ".join(str(t) for t in d.get("tasks") or [])
         return f"mission {d.get('id')} {d.get('phase')}" + (f": {extra}" if extra else "")
     if event.kind == "reply":
-        return f"reply     {d.get('text')!r}" + (f" (gestures: {', '.join(d['gestures'])})" if d.get("gestures") else "")
+        gestures = f" (gestures: {', '.join(d['gestures'])})" if d.get("gestures") else ""
+        return f"reply     {d.get('text')!r}{gestures}"
     if event.kind == "command" and d.get("family") == "tts" and d.get("cmd") == "say":
         return f"says      {(d.get('args') or {}).get('text')!r}"
     if event.kind == "command" and d.get("cmd") == "play":

@@ -47,7 +47,7 @@ def cmd_mission(args: argparse.Namespace) -> int:
     if len(args.at) > len(args.then):
         print("stuart-bt: more --at than --then", file=sys.stderr)
         return 1
-    later = sorted(zip(args.then, args.at + [0.0] * (len(args.then) - len(args.at))), key=lambda p: p[1])
+    later = sorted(zip(args.then, args.at + [0.0] * (len(args.then) - len(args.at)), strict=True), key=lambda p: p[1])
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, report=args.report,
                              log=args.log, require_wake=not args.no_wake, max_repairs=args.max_repairs,
                              conversation=args.llm, conversation_options=llm_options(args),

@@ -365,7 +365,8 @@ class MissionExecutor:
         queued = [job for job in self._queue if isinstance(job, _Say) and job.why == "reply"]
         for old in queued[: max(0, len(queued) - MAX_QUEUED_REPLIES + 1)]:
             self._queue.remove(old)
-            self.events.publish("log", level="info", message=f"reply dropped unsaid (newer talk came): {old.text[:60]!r}")
+            self.events.publish("log", level="info",
+                                message=f"reply dropped unsaid (newer talk came): {old.text[:60]!r}")
         self._queue.appendleft(say)
 
     def _stale(self, job: _Say) -> bool:

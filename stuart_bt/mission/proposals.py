@@ -17,6 +17,7 @@ import re
 from collections.abc import Iterable, Sequence
 from typing import Any, Protocol, runtime_checkable
 
+from ..jsonfile import is_finite_number
 from ..language import TaskIntent
 from ..language.intents import ACTIONS
 
@@ -55,7 +56,8 @@ def schema(actions: Sequence[str] = ACTIONS) -> dict[str, Any]:
             "required": ["tasks"]}
 
 
-def messages(request: str, places: Iterable[str], objects: Iterable[str], gestures: Iterable[str]) -> list[dict[str, str]]:
+def messages(request: str, places: Iterable[str], objects: Iterable[str],
+             gestures: Iterable[str]) -> list[dict[str, str]]:
     """The prompt: what each task means, the names the robot knows, and the request."""
     system = (
         "You turn a request to a humanoid robot into robot tasks. Answer with JSON only. Tasks: "
@@ -82,7 +84,7 @@ def parse(raw: str, actions: Sequence[str] = ACTIONS) -> list[TaskIntent] | None
         if not isinstance(task, dict) or task.get("action") not in actions:
             return None
         numbers = {k: task.get(k, 0.0) for k in ("x", "y", "yaw")}
-        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in numbers.values()):
+        if not all(is_finite_number(v) for v in numbers.values()):
             return None
         target = task.get("target", "")
         out.append(TaskIntent(task["action"], str(target).strip().lower() if isinstance(target, str) else "",
@@ -96,7 +98,8 @@ def is_question(text: str) -> bool:
 
 
 PHRASES = {"navigate_to_marker": "go to the {place}", "pick_up": "pick up the {target}",
-           "find": "look for the {target}", "gesture": "do a {target}", "move_relative": "move {x:g} m forward and {y:g} m left",
+           "find": "look for the {target}", "gesture": "do a {target}",
+           "move_relative": "move {x:g} m forward and {y:g} m left",
            "turn_by_angle": "turn {degrees:.0f} degrees", "turn_around": "turn around", "stop": "stop"}
 
 

@@ -3,8 +3,8 @@ confidence and depth, and where it was placed in the map."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 import cv2
 import numpy as np

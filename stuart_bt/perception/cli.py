@@ -135,7 +135,7 @@ class _Source:
         self.world: Any = None
         self.camera: Any = None
 
-    def __enter__(self) -> "_Source":
+    def __enter__(self) -> _Source:
         from .frames import CameraError
 
         try:

@@ -28,7 +28,7 @@ class Intrinsics:
     height: int
 
     @classmethod
-    def from_fov(cls, width: int, height: int, fovy_deg: float) -> "Intrinsics":
+    def from_fov(cls, width: int, height: int, fovy_deg: float) -> Intrinsics:
         """Square pixels, principal point at the image centre (what the sim renders)."""
         import math
 
@@ -39,7 +39,7 @@ class Intrinsics:
         return {"fx": self.fx, "fy": self.fy, "cx": self.cx, "cy": self.cy, "width": self.width, "height": self.height}
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Intrinsics":
+    def from_dict(cls, d: dict[str, Any]) -> Intrinsics:
         return cls(float(d["fx"]), float(d["fy"]), float(d["cx"]), float(d["cy"]), int(d["width"]), int(d["height"]))
 
 
@@ -67,10 +67,10 @@ class CameraSource(ABC):
     def read(self) -> Frame:
         """The next frame (blocks until there is one); raises :class:`CameraError` on failure."""
 
-    def close(self) -> None:
+    def close(self) -> None:  # noqa: B027 - a hook: sources with a device override it
         """Release the device or connection."""
 
-    def __enter__(self) -> "CameraSource":
+    def __enter__(self) -> CameraSource:
         return self
 
     def __exit__(self, *exc: object) -> None:

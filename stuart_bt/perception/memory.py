@@ -11,8 +11,9 @@ object takes at most one observation from a frame, so two bottles seen side by s
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import Any
 
 from ..clock import Clock
 

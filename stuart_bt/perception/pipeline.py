@@ -63,7 +63,11 @@ class Perception:
         located = [p for d in self.detector.detect(frame) if (p := self.locate(frame, d)) is not None]
         touched: list[Remembered] = []
         if self.memory is not None:
-            observations = [Observation(p.detection.label, *map(float, p.world), p.detection.confidence)
-                            for p in located]
+            observations = [Observation(p.detection.label, *_xyz(p.world), p.detection.confidence) for p in located]
             touched = self.memory.update(observations, frame.t)
         return located, touched
+
+
+def _xyz(world: Any) -> tuple[float, float, float]:
+    x, y, z = (float(v) for v in world)
+    return x, y, z

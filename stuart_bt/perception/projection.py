@@ -37,13 +37,13 @@ class CameraMount:
     pitch: float  # radians, positive = looking down
 
     @classmethod
-    def sim(cls) -> "CameraMount":
+    def sim(cls) -> CameraMount:
         """The simulated G1's RealSense, from the robot description the sim model is built from."""
         x, y, z = desc.HEAD_CAMERA_XYZ
         return cls(x, y, z, desc.HEAD_CAMERA_PITCH)
 
     @classmethod
-    def thesis(cls, theta: float = THESIS_THETA, d: float = THESIS_D, h: float = THESIS_H) -> "CameraMount":
+    def thesis(cls, theta: float = THESIS_THETA, d: float = THESIS_D, h: float = THESIS_H) -> CameraMount:
         """The original system's transform: the optical centre d ahead of and h above the torso
         origin, on the centre line, pitched theta down."""
         return cls(d, 0.0, h, theta)

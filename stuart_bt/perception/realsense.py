@@ -7,7 +7,8 @@ nothing of the map.
 
 from __future__ import annotations
 
-from typing import Callable
+import contextlib
+from collections.abc import Callable
 
 import numpy as np
 
@@ -21,7 +22,7 @@ class RealSenseCamera(CameraSource):
     def __init__(self, width: int = 424, height: int = 240, fps: int = 30,
                  pose: Callable[[], Pose] = Pose, clock: Callable[[], float] | None = None) -> None:
         try:
-            import pyrealsense2 as rs  # type: ignore[import-not-found]
+            import pyrealsense2 as rs
         except ImportError:
             raise CameraError("the RealSense camera needs pyrealsense2: pip install 'stuart-bt[realsense]'") from None
         self._rs = rs
@@ -51,7 +52,5 @@ class RealSenseCamera(CameraSource):
                      self.intrinsics, t, self.pose())
 
     def close(self) -> None:
-        try:
+        with contextlib.suppress(RuntimeError):
             self.pipeline.stop()
-        except RuntimeError:
-            pass

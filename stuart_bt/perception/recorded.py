@@ -70,8 +70,9 @@ class RecordedFrames(CameraSource):
             raise CameraError(f"recorded frames: {stem} needs {stem}_color.png and a 16-bit {stem}_depth.png")
         labels = None
         label_path = Path(f"{base}_labels.png")
-        if label_path.is_file():
-            labels = cv2.imread(str(label_path), cv2.IMREAD_UNCHANGED).astype(np.int16) - 1
+        raw_labels = cv2.imread(str(label_path), cv2.IMREAD_UNCHANGED) if label_path.is_file() else None
+        if raw_labels is not None:
+            labels = raw_labels.astype(np.int16) - 1
         t, pose = 0.0, Pose()
         info = Path(f"{base}.json")
         if info.is_file():

@@ -13,6 +13,7 @@ import shutil
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -20,6 +21,12 @@ from ..world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
 
 RESOLUTIONS = {"424x240": (424, 240), "640x480": (640, 480)}  # the D435's usual modes
+
+
+class WorldCaller(Protocol):
+    """What the camera needs of the simulator: one request, one reply."""
+
+    def call(self, cmd: str, **args: Any) -> dict[str, Any]: ...
 
 
 @dataclass(frozen=True)
@@ -54,7 +61,7 @@ def parse_resolution(text: str) -> tuple[int, int]:
 class SimCamera(CameraSource):
     name = "sim"
 
-    def __init__(self, world: object, width: int = 424, height: int = 240, noise: DepthNoise | None = None,
+    def __init__(self, world: WorldCaller, width: int = 424, height: int = 240, noise: DepthNoise | None = None,
                  seed: int = 0, far: float = 10.0) -> None:
         """``world`` is a :class:`~stuart_bt.sim.world.client.WorldClient` (or anything with its
         ``call``); depths beyond ``far`` metres (walls far away, the sky) read as no reading."""

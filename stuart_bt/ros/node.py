@@ -10,6 +10,7 @@ returns at once. A callback that fails is logged and the bridge carries on.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import queue
 import threading
@@ -34,7 +35,7 @@ from ..snapshot import TreeSnapshot  # noqa: E402
 from . import topics as t  # noqa: E402
 
 try:  # markers need visualization_msgs (in the ros extra); without it they are not published
-    from visualization_msgs.msg import Marker, MarkerArray  # noqa: E402
+    from visualization_msgs.msg import Marker, MarkerArray
 except ImportError:  # pragma: no cover - the extra installs it
     Marker = MarkerArray = None
 
@@ -88,7 +89,7 @@ class Bridge:
         self._unsubscribe: Callable[[], None] | None = robot.events.subscribe(self.on_event)
 
     # -- life cycle ---------------------------------------------------------------------------------
-    def start(self) -> "Bridge":
+    def start(self) -> Bridge:
         self._thread = threading.Thread(target=self.spin, name="ros-bridge", daemon=True)
         self._thread.start()
         return self
@@ -139,10 +140,8 @@ class Bridge:
         if threading.get_ident() == self._ros_thread:
             self._drain()
         elif not self._stopping.is_set():
-            try:
+            with contextlib.suppress(Exception):  # destroyed under a late publisher: close() drains the queue
                 self._wake.trigger()
-            except Exception:  # noqa: BLE001 - destroyed under a late publisher: close() drains the queue
-                pass
 
     def _drain(self) -> None:
         while True:

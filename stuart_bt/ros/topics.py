@@ -93,7 +93,7 @@ def memory_objects(data: dict[str, Any]) -> list[dict[str, Any]]:
     return good
 
 
-def clean_text(text: str) -> str | None:
+def clean_text(text: object) -> str | None:
     """Input text as the mission executor should see it, or None when it is not speech at all
     (empty, only control characters, or far too long)."""
     if not isinstance(text, str) or len(text) > MAX_TEXT:

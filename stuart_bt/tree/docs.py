@@ -55,7 +55,8 @@ def _leaf(leaf: LeafSpec) -> list[str]:
     summary = "; ".join(facts)
     lines = [f"#### `{leaf.name}`", "", leaf.doc, "", summary[0].upper() + summary[1:] + ".", ""]
     grouped = {p for group in leaf.one_of for p in group}
-    return lines + (_table(leaf.params, grouped) if leaf.params else ["No parameters besides `name` and `timeout`.", ""])
+    no_params = ["No parameters besides `name` and `timeout`.", ""]
+    return lines + (_table(leaf.params, grouped) if leaf.params else no_params)
 
 
 def _table(params: tuple[Param, ...], grouped: set[str]) -> list[str]:

@@ -71,7 +71,7 @@ class _Exporter:
 
     def children(self, children: list[NodeSpec]) -> list[dict[str, Any]]:
         autos = child_segments([None] * len(children), [c.kind for c in children])
-        return [self.node(c, auto) for c, auto in zip(children, autos)]
+        return [self.node(c, auto) for c, auto in zip(children, autos, strict=True)]
 
     def params(self, spec: NodeSpec) -> dict[str, Any]:
         """Parameters as loaded; file paths (relative to the file each was written in) are made

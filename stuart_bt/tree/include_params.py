@@ -45,6 +45,11 @@ class Declared:
     def required(self) -> bool:
         return self.default_node is None
 
+    def default_value(self, file: str) -> Val:
+        """The default as an argument's value (only for a parameter that has one)."""
+        assert self.default_node is not None, f"parameter {self.name!r} is required: it has no default"
+        return Val(self.default, self.default_node, file, self.type)
+
     def as_written(self) -> dict[str, Any]:
         out: dict[str, Any] = {"type": self.type}
         if not self.required:
@@ -140,7 +145,8 @@ def _declaration(name: str, node: Node, scope: Scope, log: ErrorLog) -> Declared
     if isinstance(node, ScalarNode) and node.tag.endswith(":null"):
         return Declared(name, "any", None, None, None, ())
     if not isinstance(node, MappingNode):
-        log.add(location(scope.file, node), f"parameter {name!r} must be a mapping: {{type: ..., default: ..., doc: ...}}")
+        log.add(location(scope.file, node),
+                f"parameter {name!r} must be a mapping: {{type: ..., default: ..., doc: ...}}")
         return None
     fields: dict[str, tuple[Any, Node]] = {}
     for key, value in named_items(node, scope.file, log):
@@ -163,7 +169,8 @@ def _declaration(name: str, node: Node, scope: Scope, log: ErrorLog) -> Declared
         return None
     if type_ == "choice" and (not isinstance(choices, list) or not choices
                               or not all(isinstance(c, str) for c in choices)):
-        log.add(location(scope.file, choices_node), f"parameter {name!r} of type choice needs 'choices': a list of names")
+        log.add(location(scope.file, choices_node),
+                f"parameter {name!r} of type choice needs 'choices': a list of names")
         return None
     doc, doc_node = fields.get("doc", (None, node))
     if doc is not None and not isinstance(doc, str):
@@ -177,7 +184,7 @@ def _declaration(name: str, node: Node, scope: Scope, log: ErrorLog) -> Declared
 
 def defaults(declared: dict[str, Declared], file: str) -> dict[str, Val]:
     """Arguments for a file loaded on its own: declared defaults; required ones stay ``$name``."""
-    return {d.name: Val(d.default, d.default_node, file, d.type) for d in declared.values() if not d.required}
+    return {d.name: d.default_value(file) for d in declared.values() if not d.required}
 
 
 def bind(
@@ -216,7 +223,7 @@ def bind(
             log.add(location(includer.file, with_node if isinstance(with_node, MappingNode) else at),
                     f"missing argument {d.name!r} for {included_file} (a required parameter)", path)
         else:
-            args[d.name] = Val(d.default, d.default_node, included_file, d.type)
+            args[d.name] = d.default_value(included_file)
     return args
 
 

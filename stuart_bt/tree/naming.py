@@ -16,7 +16,7 @@ def child_segments(names: Sequence[str | None], bases: Sequence[str]) -> list[st
     totals = Counter(bases)
     seen: Counter[str] = Counter()
     segments = []
-    for name, base in zip(names, bases):
+    for name, base in zip(names, bases, strict=True):
         seen[base] += 1
         if name:
             segments.append(name)

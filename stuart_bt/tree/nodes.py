@@ -337,7 +337,7 @@ class NodeReader:
         segments = child_segments([h.name for h in heads], [h.base for h in heads])
         first_line: dict[str, int] = {}
         built = []
-        for head, segment in zip(heads, segments):
+        for head, segment in zip(heads, segments, strict=True):
             where = location(scope.file, head.name_node or head.key)
             if segment in first_line:
                 self.log.add(where, f"duplicate name {segment!r} among siblings (also at line "

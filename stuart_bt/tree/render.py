@@ -161,7 +161,8 @@ def _graphviz(dot_text: str, fmt: str) -> bytes:
     if dot is None:
         raise RenderError(f"drawing {fmt} needs the Graphviz 'dot' program: install graphviz (make installs it)")
     try:
-        done = subprocess.run([dot, f"-T{fmt}"], input=dot_text.encode("utf-8"), capture_output=True, timeout=60, check=False)
+        done = subprocess.run([dot, f"-T{fmt}"], input=dot_text.encode("utf-8"), capture_output=True, timeout=60,
+                              check=False)
     except (OSError, subprocess.TimeoutExpired) as e:
         raise RenderError(f"Graphviz 'dot' failed: {e}") from None
     if done.returncode != 0:

@@ -176,7 +176,7 @@ def _value(param: Param) -> dict[str, Any]:
 
 
 def _typed(param: Param) -> dict[str, Any]:
-    simple = {
+    simple: dict[str, dict[str, Any]] = {
         "string": {"type": "string"},
         "number": {"type": "number"},
         "angle": {"type": "number"},

@@ -8,8 +8,9 @@ logs, reports and tests can all name it the same way.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -38,17 +39,17 @@ class NodeSpec:
     path: str
     location: Location
     params: dict[str, Any] = field(default_factory=dict)
-    children: list["NodeSpec"] = field(default_factory=list)
+    children: list[NodeSpec] = field(default_factory=list)
     param_locations: dict[str, Location] = field(default_factory=dict)
     include: str | None = None  # for the root of an included subtree: the file it came from
 
-    def walk(self) -> Iterator["NodeSpec"]:
+    def walk(self) -> Iterator[NodeSpec]:
         """This node and every descendant, depth first, parents before children."""
         yield self
         for child in self.children:
             yield from child.walk()
 
-    def find(self, path: str) -> "NodeSpec | None":
+    def find(self, path: str) -> NodeSpec | None:
         return next((n for n in self.walk() if n.path == path), None)
 
 

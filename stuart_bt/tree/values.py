@@ -155,6 +155,6 @@ def _check_gestures(value: Any, node: Node, file: str) -> list[Problem]:
         return [(here, "expected at least one gesture name")]
     items = node.value if isinstance(node, SequenceNode) and len(node.value) == len(value) else [node] * len(value)
     problems: list[Problem] = []
-    for item, item_node in zip(value, items):
+    for item, item_node in zip(value, items, strict=True):
         problems += check_value("gesture", item, item_node, file, Path("."))
     return problems

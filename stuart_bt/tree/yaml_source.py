@@ -116,7 +116,8 @@ def read_file(path: Path, file: str) -> Source:
 def read_text(text: str, file: str) -> Source:
     """Compose YAML ``text``, checking limits, tabs, aliases and duplicate keys."""
     if len(text.encode("utf-8", errors="replace")) > MAX_BYTES:
-        return Source(file, None, [TreeError(Location(file, 1, 1), "text is larger than the 1 MB limit for tree files")])
+        too_big = TreeError(Location(file, 1, 1), "text is larger than the 1 MB limit for tree files")
+        return Source(file, None, [too_big])
     bad_char = yaml.reader.Reader.NON_PRINTABLE.search(text)
     if bad_char:
         return Source(file, None, [_control_character(text, file, bad_char.start())])
@@ -312,6 +313,7 @@ def to_python(node: Node, file: str) -> Any:
             try:
                 result[k] = to_python(value, file)
             except TypeError:
-                raise BadValue(location(file, key), "mapping keys must be plain values, not lists or mappings") from None
+                raise BadValue(location(file, key),
+                               "mapping keys must be plain values, not lists or mappings") from None
         return result
     raise BadValue(location(file, node), "unsupported YAML node")

@@ -22,11 +22,12 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+from collections.abc import AsyncIterator, Awaitable, Callable
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
-from typing import Any, AsyncIterator, Awaitable, Callable
+from typing import Any
 
 from starlette.applications import Starlette
 from starlette.requests import Request
@@ -68,92 +69,96 @@ class BadRequest(Exception):
     """One sentence for the page; becomes a 400 answer."""
 
 
-def create_app(parts: WebParts) -> Starlette:
-    hub, control = parts.hub, parts.control
+class WebApi:
+    """The handlers of every route, one method each, sharing the server's parts. A replay has no
+    control: a command to it is refused with a 409 and one sentence."""
 
-    def need_control() -> Any:
-        if control is None:
+    def __init__(self, parts: WebParts) -> None:
+        self.parts, self.hub, self.control = parts, parts.hub, parts.control
+
+    def need_control(self) -> Any:
+        if self.control is None:
             raise ControlError("this is a replay of a saved log: nothing to command")
-        return control
+        return self.control
 
-    async def index(request: Request) -> Response:
+    async def index(self, request: Request) -> Response:
         response = FileResponse(STATIC / "index.html")
         token = request.query_params.get("token")
-        if parts.guard.token is not None and token:
+        if self.parts.guard.token is not None and token:
             response.set_cookie(COOKIE, token, httponly=True, samesite="strict")
         return response
 
-    async def state(request: Request) -> Response:
-        return JSONResponse(need_control().state() if control else {"mode": "replay", "busy": False})
+    async def state(self, request: Request) -> Response:
+        return JSONResponse(self.need_control().state() if self.control else {"mode": "replay", "busy": False})
 
-    async def run(request: Request) -> Response:
-        await _off_loop(need_control().run)
+    async def run(self, request: Request) -> Response:
+        await _off_loop(self.need_control().run)
         return JSONResponse({"ok": True})
 
-    async def stop(request: Request) -> Response:
-        await _off_loop(need_control().stop)
+    async def stop(self, request: Request) -> Response:
+        await _off_loop(self.need_control().stop)
         return JSONResponse({"ok": True})
 
-    async def resume(request: Request) -> Response:
-        await _off_loop(need_control().resume)
+    async def resume(self, request: Request) -> Response:
+        await _off_loop(self.need_control().resume)
         return JSONResponse({"ok": True})
 
-    async def say(request: Request) -> Response:
+    async def say(self, request: Request) -> Response:
         body = await _json(request)
         text = body.get("text")
         if not isinstance(text, str) or not text.strip():
             raise BadRequest("type something to say")
-        result = await _off_loop(need_control().say, text.strip())
+        result = await _off_loop(self.need_control().say, text.strip())
         return JSONResponse({"ok": True, **(result or {})})
 
-    async def walk(request: Request) -> Response:
+    async def walk(self, request: Request) -> Response:
         body = await _json(request)
         x, y = _number(body, "x"), _number(body, "y")
         yaw = None if body.get("yaw") is None else _number(body, "yaw")
-        await _off_loop(need_control().walk, x, y, yaw)
+        await _off_loop(self.need_control().walk, x, y, yaw)
         return JSONResponse({"ok": True})
 
-    async def goto(request: Request) -> Response:
+    async def goto(self, request: Request) -> Response:
         body = await _json(request)
         marker = body.get("marker")
         if not isinstance(marker, str):
             raise BadRequest("name a marker to go to")
-        await _off_loop(need_control().go_to, marker)
+        await _off_loop(self.need_control().go_to, marker)
         return JSONResponse({"ok": True})
 
-    async def map_info(request: Request) -> Response:
-        if parts.map is None:
+    async def map_info(self, request: Request) -> Response:
+        if self.parts.map is None:
             raise ControlError("no map")
-        return JSONResponse(parts.map.info())
+        return JSONResponse(self.parts.map.info())
 
-    async def map_png(request: Request) -> Response:
-        if parts.map is None:
+    async def map_png(self, request: Request) -> Response:
+        if self.parts.map is None:
             raise ControlError("no map")
-        return FileResponse(parts.map.png, media_type="image/png")
+        return FileResponse(self.parts.map.png, media_type="image/png")
 
-    async def markers_get(request: Request) -> Response:
-        if parts.markers is None:
+    async def markers_get(self, request: Request) -> Response:
+        if self.parts.markers is None:
             raise ControlError("no marker file")
-        return JSONResponse(await _off_loop(parts.markers.load))
+        return JSONResponse(await _off_loop(self.parts.markers.load))
 
-    async def markers_edit(request: Request) -> Response:
-        if parts.markers is None:
+    async def markers_edit(self, request: Request) -> Response:
+        if self.parts.markers is None:
             raise ControlError("no marker file")
         body = await _json(request)
         try:
-            doc = await _off_loop(parts.markers.edit, body)
+            doc = await _off_loop(self.parts.markers.edit, body)
         except MarkerConflict as e:
             return JSONResponse({"error": str(e), "current": e.current}, status_code=409)
-        if control is not None:
-            control.set_markers(load_markers(parts.markers.path))
+        if self.control is not None:
+            self.control.set_markers(load_markers(self.parts.markers.path))
         return JSONResponse(doc)
 
-    async def joints(request: Request) -> Response:
+    async def joints(self, request: Request) -> Response:
         return JSONResponse({"joints": await _off_loop(joint_table),
-                             "live": bool(control is not None and control.mode == "tree"
-                                          and control.session.world is not None)})
+                             "live": bool(self.control is not None and self.control.mode == "tree"
+                                          and self.control.session.world is not None)})
 
-    async def pose(request: Request) -> Response:
+    async def pose(self, request: Request) -> Response:
         body = await _json(request)
         joints_in = body.get("joints")
         if not isinstance(joints_in, dict) or not joints_in:
@@ -163,45 +168,45 @@ def create_app(parts: WebParts) -> Starlette:
         problems = validate_keyframes([{"t": 0.0, "joints": joints_in}])
         if problems:
             raise BadRequest("; ".join(p.removeprefix("keyframe 0: ") for p in problems))
-        result = await _off_loop(need_control().world_call, "arm_trajectory", id="web pose",
+        result = await _off_loop(self.need_control().world_call, "arm_trajectory", id="web pose",
                                  points=[{"t": POSE_BLEND, "joints": joints_in}])
         return JSONResponse({"ok": True, "ends_at": result.get("ends_at")})
 
-    async def pose_now(request: Request) -> Response:
-        state_now = await _off_loop(need_control().world_call, "state")
+    async def pose_now(self, request: Request) -> Response:
+        state_now = await _off_loop(self.need_control().world_call, "state")
         names = {row["name"] for row in await _off_loop(joint_table)}
         return JSONResponse({"joints": {k: v for k, v in state_now.get("joints", {}).items() if k in names},
                              "t": state_now.get("t")})
 
-    def folder() -> GestureFolder:
-        if parts.gestures is None:
+    def folder(self) -> GestureFolder:
+        if self.parts.gestures is None:
             raise ControlError("no gesture folder")
-        return parts.gestures
+        return self.parts.gestures
 
-    async def gestures_list(request: Request) -> Response:
-        return JSONResponse({"folder": str(folder().folder), "gestures": folder().names()})
+    async def gestures_list(self, request: Request) -> Response:
+        return JSONResponse({"folder": str(self.folder().folder), "gestures": self.folder().names()})
 
-    async def gesture_get(request: Request) -> Response:
-        return JSONResponse(await _off_loop(folder().load, request.path_params["name"]))
+    async def gesture_get(self, request: Request) -> Response:
+        return JSONResponse(await _off_loop(self.folder().load, request.path_params["name"]))
 
-    async def gesture_save(request: Request) -> Response:
+    async def gesture_save(self, request: Request) -> Response:
         body = await _json(request)
-        path = await _off_loop(folder().save, request.path_params["name"], body.get("keyframes"))
+        path = await _off_loop(self.folder().save, request.path_params["name"], body.get("keyframes"))
         return JSONResponse({"ok": True, "file": str(path)})
 
-    async def gesture_play(request: Request) -> Response:
+    async def gesture_play(self, request: Request) -> Response:
         name = request.path_params["name"]
-        await _off_loop(folder().load, name)  # refuses a missing or broken file with its problems
-        await _off_loop(need_control().play_gesture, folder().path_for(name))
+        await _off_loop(self.folder().load, name)  # refuses a missing or broken file with its problems
+        await _off_loop(self.need_control().play_gesture, self.folder().path_for(name))
         return JSONResponse({"ok": True})
 
-    async def socket(websocket: WebSocket) -> None:
-        if not parts.guard.host_ok(websocket.headers) or not parts.guard.origin_ok(websocket.headers) or \
-                not parts.guard.token_ok(websocket.query_params, websocket.headers, websocket.cookies):
+    async def socket(self, websocket: WebSocket) -> None:
+        if not self.parts.guard.host_ok(websocket.headers) or not self.parts.guard.origin_ok(websocket.headers) or \
+                not self.parts.guard.token_ok(websocket.query_params, websocket.headers, websocket.cookies):
             await websocket.close(code=1008)
             return
         await websocket.accept()
-        client, hello = hub.connect()
+        client, hello = self.hub.connect()
 
         async def until_closed() -> None:  # a closed tab ends its sender at once, not at the next send
             try:
@@ -222,37 +227,42 @@ def create_app(parts: WebParts) -> Starlette:
             pass
         finally:
             watcher.cancel()
-            hub.disconnect(client)
+            self.hub.disconnect(client)
 
+
+def create_app(parts: WebParts) -> Starlette:
+    """The web view's ASGI app: the routes of :class:`WebApi`, the static page, and the guard
+    (Host, Origin, token, body limits) in front of everything."""
+    api = WebApi(parts)
     routes = [
-        Route("/", index),
-        Route("/api/state", state),
-        Route("/api/run", run, methods=["POST"]),
-        Route("/api/stop", stop, methods=["POST"]),
-        Route("/api/continue", resume, methods=["POST"]),
-        Route("/api/say", say, methods=["POST"]),
-        Route("/api/walk", walk, methods=["POST"]),
-        Route("/api/goto", goto, methods=["POST"]),
-        Route("/api/map", map_info),
-        Route("/api/map.png", map_png),
-        Route("/api/markers", markers_get, methods=["GET"]),
-        Route("/api/markers", markers_edit, methods=["POST"]),
-        Route("/api/joints", joints),
-        Route("/api/pose", pose_now, methods=["GET"]),
-        Route("/api/pose", pose, methods=["POST"]),
-        Route("/api/gestures", gestures_list),
-        Route("/api/gestures/{name}", gesture_get, methods=["GET"]),
-        Route("/api/gestures/{name}", gesture_save, methods=["POST"]),
-        Route("/api/gestures/{name}/play", gesture_play, methods=["POST"]),
-        WebSocketRoute("/ws", socket),
+        Route("/", api.index),
+        Route("/api/state", api.state),
+        Route("/api/run", api.run, methods=["POST"]),
+        Route("/api/stop", api.stop, methods=["POST"]),
+        Route("/api/continue", api.resume, methods=["POST"]),
+        Route("/api/say", api.say, methods=["POST"]),
+        Route("/api/walk", api.walk, methods=["POST"]),
+        Route("/api/goto", api.goto, methods=["POST"]),
+        Route("/api/map", api.map_info),
+        Route("/api/map.png", api.map_png),
+        Route("/api/markers", api.markers_get, methods=["GET"]),
+        Route("/api/markers", api.markers_edit, methods=["POST"]),
+        Route("/api/joints", api.joints),
+        Route("/api/pose", api.pose_now, methods=["GET"]),
+        Route("/api/pose", api.pose, methods=["POST"]),
+        Route("/api/gestures", api.gestures_list),
+        Route("/api/gestures/{name}", api.gesture_get, methods=["GET"]),
+        Route("/api/gestures/{name}", api.gesture_save, methods=["POST"]),
+        Route("/api/gestures/{name}/play", api.gesture_play, methods=["POST"]),
+        WebSocketRoute("/ws", api.socket),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
 
     @asynccontextmanager
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
-        hub.attach(asyncio.get_running_loop())
+        parts.hub.attach(asyncio.get_running_loop())
         yield
-        hub.close()
+        parts.hub.close()
 
     app = Starlette(routes=routes, lifespan=lifespan, exception_handlers=EXCEPTION_HANDLERS)
     return _Checked(app, parts.guard)  # type: ignore[return-value]

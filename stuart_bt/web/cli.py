@@ -8,6 +8,7 @@ the simulator), then the page is served until Ctrl-C, and everything is stopped 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import socket
 import sys
 from pathlib import Path
@@ -93,10 +94,8 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
             print(f"token: {guard.token}  (needed on every request: this address is not loopback-only)", flush=True)
         server = uvicorn.Server(uvicorn.Config(create_app(parts), log_level="warning", lifespan="on",
                                                ws="websockets-sansio", timeout_graceful_shutdown=2))
-        try:
+        with contextlib.suppress(KeyboardInterrupt):  # uvicorn re-raises the Ctrl-C it handled: a normal end
             server.run(sockets=[listener])
-        except KeyboardInterrupt:  # uvicorn re-raises the Ctrl-C it handled: for a server, a normal end
-            pass
     finally:
         if control is not None:
             control.close()
@@ -129,9 +128,9 @@ def _robot(args: argparse.Namespace) -> tuple[Any, Any, Path | None, str]:
 
         if args.backend == "unitree":
             raise UserError("the mission console runs on --backend dry or sim")
-        options = MissionOptions(backend=args.backend, rate=args.rate, speed=speed, start=args.start,
+        mission = MissionOptions(backend=args.backend, rate=args.rate, speed=speed, start=args.start,
                                  require_wake=not args.no_wake, log=Path(args.log) if args.log else None)
-        control: Any = MissionControl(options)
+        control: Any = MissionControl(mission)
         info = {"mode": "mission", "backend": args.backend}
         return control, EventHub(control.events, info=info), Path(args.markers) if args.markers else \
             control.markers_file, f"the mission console ({args.backend})"

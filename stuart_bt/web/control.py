@@ -62,7 +62,7 @@ class TreeControl:
         return self.session.events
 
     # -- life cycle ---------------------------------------------------------------------------------
-    def start(self) -> "TreeControl":
+    def start(self) -> TreeControl:
         self.session.start()
         self.events.subscribe(self._track_steps)
         self._worker = threading.Thread(target=self._work, name="web-runs", daemon=True)
@@ -204,9 +204,10 @@ class TreeControl:
 
     def _track_steps(self, event: Event) -> None:
         root = self.spec.root
-        if event.kind == "status" and event.data.get("new") == "SUCCESS" and event.path:
-            if any(event.path == c.path for c in root.children):
-                self._finished_steps.add(event.path)
+        path = event.path
+        succeeded = event.kind == "status" and event.data.get("new") == "SUCCESS"
+        if path and succeeded and any(path == c.path for c in root.children):
+            self._finished_steps.add(path)
 
 
 class MissionControl:
@@ -228,7 +229,7 @@ class MissionControl:
     def session(self) -> Session:
         return self.robot.session
 
-    def start(self) -> "MissionControl":
+    def start(self) -> MissionControl:
         self.robot.start()
         return self
 

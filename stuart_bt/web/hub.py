@@ -18,7 +18,8 @@ from __future__ import annotations
 import asyncio
 import json
 from collections import deque
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 from ..events import Event, EventStream, _json_default
 from ..jsonfile import to_json

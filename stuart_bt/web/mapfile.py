@@ -33,7 +33,7 @@ class MapFile:
     pixels: Any = None  # rows of grey levels, or None without Pillow
 
     @classmethod
-    def load(cls, yaml_path: str | Path) -> "MapFile":
+    def load(cls, yaml_path: str | Path) -> MapFile:
         yaml_path = Path(yaml_path)
         meta = yaml.safe_load(yaml_path.read_text(encoding="utf-8"))
         png = yaml_path.parent / meta["image"]

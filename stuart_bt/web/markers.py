@@ -20,9 +20,10 @@ import os
 import re
 import tempfile
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..jsonfile import to_json
 from ..suggest import did_you_mean

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import hmac
 import secrets
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping
 from urllib.parse import urlsplit
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
@@ -50,7 +50,7 @@ class Guard:
     hosts: frozenset[str] | None = None
 
     @classmethod
-    def for_host(cls, host: str, port: int | None = None, extra: tuple[str, ...] = ()) -> "Guard":
+    def for_host(cls, host: str, port: int | None = None, extra: tuple[str, ...] = ()) -> Guard:
         hosts = allowed_hosts(host, port, extra) if port is not None else None
         return cls(secrets.token_urlsafe(24) if needs_token(host) else None, hosts)
 

@@ -20,6 +20,7 @@ topic) for the test to assert on. stdin takes JSON lines that script faults::
 from __future__ import annotations
 
 import argparse
+import contextlib
 import ctypes
 import json
 import math
@@ -123,53 +124,55 @@ class Robot:
         return None
 
     def _serve(self, service: str, api: int, p: Any) -> tuple[int, str]:
-        now = time.monotonic()
-        if service in ("sport", "loco"):
-            if api == 7105:
-                vx, vy, w = p["velocity"]
-                with self.lock:
-                    self.velocity, self.velocity_until = (vx, vy, w), now + float(p["duration"])
-            return 0, ""
-        if service == "arm":
-            if api == 7107:
-                return 0, json.dumps(sorted(KNOWN_ACTIONS))
-            action = int(p["data"])
+        """(vendor code, JSON data) for one request; an unknown service: 3203 (the SDK's 'no api')."""
+        handler = {"sport": self._sport, "loco": self._sport, "arm": self._arm, "voice": self._voice,
+                   "slam_operate": self._slam}.get(service)
+        return handler(api, p, time.monotonic()) if handler else (3203, "")
+
+    def _sport(self, api: int, p: Any, now: float) -> tuple[int, str]:
+        if api == 7105:
+            vx, vy, w = p["velocity"]
             with self.lock:
-                if action not in KNOWN_ACTIONS:
-                    return 7402, ""
-                if now < self.action_until:
-                    return 7400, ""
-                if self.holding is not None and action != 99:
-                    return 7401, ""
-                self.holding = action if action in HOLDING_ACTIONS else None
-                self.action_until = now + ACTION_SECONDS
-            return 0, ""
-        if service == "voice":
-            if api == 1005:
-                return 0, json.dumps({"volume": 80})
-            return 0, ""
-        if service == "slam_operate":
-            data = p.get("data", {}) if isinstance(p, dict) else {}
-            with self.lock:
-                if api == 1804:
-                    if str(data.get("address", "")).endswith("missing.pcd"):
-                        return 507, ""
-                    self.x, self.y = float(data.get("x", 0.0)), float(data.get("y", 0.0))
-                    self.yaw = 2.0 * math.atan2(float(data.get("q_z", 0.0)), float(data.get("q_w", 1.0)))
-                    self.localised = True
-                elif api == 1102:
-                    pose = data["targetPose"]
-                    self.goal = (float(pose["x"]), float(pose["y"]),
-                                 2.0 * math.atan2(float(pose["q_z"]), float(pose["q_w"])))
-                    self.paused = False
-                elif api == 1201:
-                    self.paused = True
-                elif api == 1202:
-                    self.paused = False
-                elif api == 1901:
-                    self.goal = None
-            return 0, ""
-        return 3203, ""
+                self.velocity, self.velocity_until = (vx, vy, w), now + float(p["duration"])
+        return 0, ""
+
+    def _arm(self, api: int, p: Any, now: float) -> tuple[int, str]:
+        if api == 7107:
+            return 0, json.dumps(sorted(KNOWN_ACTIONS))
+        action = int(p["data"])
+        with self.lock:
+            if action not in KNOWN_ACTIONS:
+                return 7402, ""
+            if now < self.action_until:
+                return 7400, ""
+            if self.holding is not None and action != 99:
+                return 7401, ""
+            self.holding = action if action in HOLDING_ACTIONS else None
+            self.action_until = now + ACTION_SECONDS
+        return 0, ""
+
+    def _voice(self, api: int, p: Any, now: float) -> tuple[int, str]:
+        return (0, json.dumps({"volume": 80})) if api == 1005 else (0, "")
+
+    def _slam(self, api: int, p: Any, now: float) -> tuple[int, str]:
+        data = p.get("data", {}) if isinstance(p, dict) else {}
+        with self.lock:
+            if api == 1804:
+                if str(data.get("address", "")).endswith("missing.pcd"):
+                    return 507, ""
+                self.x, self.y = float(data.get("x", 0.0)), float(data.get("y", 0.0))
+                self.yaw = 2.0 * math.atan2(float(data.get("q_z", 0.0)), float(data.get("q_w", 1.0)))
+                self.localised = True
+            elif api == 1102:
+                pose = data["targetPose"]
+                yaw = 2.0 * math.atan2(float(pose["q_z"]), float(pose["q_w"]))
+                self.goal = (float(pose["x"]), float(pose["y"]), yaw)
+                self.paused = False
+            elif api in (1201, 1202):
+                self.paused = api == 1201
+            elif api == 1901:
+                self.goal = None
+        return 0, ""
 
     # -- the body -------------------------------------------------------------------------------
     def step(self, dt: float) -> None:
@@ -259,10 +262,8 @@ def main(argv: list[str] | None = None) -> int:
 
 def _die_with_parent() -> None:
     """SIGKILL this fake when the process that started it dies, however it dies."""
-    try:
+    with contextlib.suppress(OSError, AttributeError):
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
-    except (OSError, AttributeError):
-        pass
     if os.getppid() == 1:  # the parent was already gone before the request took effect
         os._exit(0)
 
