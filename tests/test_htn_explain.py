@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt.htn import Planner, PlanningFailed, load_domain_text
+from stuart_bt.htn import Planner, PlanningFailed, explain, load_domain_text
 from stuart_bt.mission.plan_cli import add_plan_command
 
 ERRANDS = textwrap.dedent("""\
@@ -59,7 +59,7 @@ ERRANDS = textwrap.dedent("""\
 
 def plan_text(task: str, **state: object) -> str:
     domain = load_domain_text(ERRANDS)
-    return Planner(domain).plan(task, {**domain.initial_state(), **state}).explain()
+    return explain(Planner(domain).plan(task, {**domain.initial_state(), **state}))
 
 
 def test_the_explanation_shows_methods_chosen_rejected_and_the_steps_with_their_effects() -> None:
@@ -77,7 +77,7 @@ def test_the_explanation_shows_methods_chosen_rejected_and_the_steps_with_their_
 def test_rejections_and_effects_can_be_left_out_and_ascii_drawn() -> None:
     domain = load_domain_text(ERRANDS)
     plan = Planner(domain).plan("visit(office)")
-    assert plan.explain(rejections=False, effects=False, ascii=True) == textwrap.dedent("""\
+    assert explain(plan, rejections=False, effects=False, ascii=True) == textwrap.dedent("""\
         mission
         `- visit(office)  [walk_in]
            |- 1. go(office) -> navigate(marker='office')
@@ -97,7 +97,7 @@ def test_a_failure_is_explained_down_to_its_root_cause() -> None:
               enter(): precondition not met: door_open is false (door_open=false)
             ✗ open_it: a subtask failed:
               open_door(): precondition not met: held == null is false (held='tray')""")
-    assert caught.value.explain() == textwrap.dedent("""\
+    assert explain(caught.value) == textwrap.dedent("""\
         mission
         └─ visit(office)  [walk_in]
            │  ✗ already_there: at == place is false (at='entrance', place='office')

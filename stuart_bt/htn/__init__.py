@@ -1,11 +1,11 @@
-"""HTN planning for Stuart: a YAML task domain, a backtracking planner, plans that explain themselves.
+"""HTN planning for Stuart: a YAML task domain, a backtracking planner, plans explained in words.
 
-    from stuart_bt.htn import Planner, project_domain
+    from stuart_bt.htn import Planner, explain, project_domain
     from stuart_bt.htn.state import lab_world
 
     domain = project_domain()                      # tasks/domain.yaml + tasks/hooks.py
     plan = Planner(domain).plan("fetch(bottle, workbench)", domain.initial_state(lab_world()))
-    print(plan.explain())                          # the decomposition, methods chosen and rejected
+    print(explain(plan))                           # the decomposition, methods chosen and rejected
     for step in plan.primitives():                 # what the compiler turns into leaves
         print(step.skill, step.skill_args)
 
@@ -22,7 +22,7 @@ from .domain import (
     parse_task_text,
     project_domain,
 )
-from .explain import render_tree
+from .explain import explain, render_tree
 from .hooks import Hook, HookRegistry
 from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, PlanningFailed, PlanStats, TaskNode
 from .planner import Planner
@@ -32,5 +32,5 @@ __all__ = [
     "Domain", "DomainLoadError", "Failure", "Hook", "HookRegistry", "MethodAttempt", "Plan", "PlanStats", "Planner",
     "PlanningBudgetExceeded", "PlanningFailed", "State", "TaskArgumentError", "TaskCall", "TaskNode",
     "lab_world", "load_domain", "load_domain_text", "parse_task_text", "project_domain",
-    "render_tree",
+    "explain", "render_tree",
 ]

@@ -9,16 +9,22 @@ effects the planner predicted. A tree from a failed search marks the task that f
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from .domain import format_value, short
-
-if TYPE_CHECKING:  # the plan imports this module to explain itself
-    from .plan import TaskNode
+from .plan import Plan, PlanningFailed, TaskNode
 
 MAX_INDENT = 40  # deeper levels are drawn at this indentation, marked with their depth
 UNICODE = {"tee": "├─ ", "last": "└─ ", "pipe": "│  ", "gap": "   ", "no": "✗", "to": "→", "then": "⇒"}
 ASCII = {"tee": "|- ", "last": "`- ", "pipe": "|  ", "gap": "   ", "no": "x", "to": "->", "then": "=>"}
+
+
+def explain(plan: Plan | PlanningFailed, *, rejections: bool = True, effects: bool = True,
+            ascii: bool = False) -> str:
+    """A plan, or a search that failed, as a text tree: each task with the method chosen and the
+    methods tried and rejected (``rejections``), each step with its skill call and predicted
+    ``effects``; box-drawing characters unless ``ascii``."""
+    return render_tree(plan.root, rejections=rejections, effects=effects, ascii=ascii)
 
 
 def render_tree(root: TaskNode, *, rejections: bool = True, effects: bool = True, ascii: bool = False) -> str:

@@ -226,11 +226,6 @@ class Plan:
         """The steps in order: primitive nodes, each with ``skill`` and ``skill_args``."""
         return self.root.primitives()
 
-    def explain(self, *, rejections: bool = True, effects: bool = True, ascii: bool = False) -> str:
-        from .explain import render_tree
-
-        return render_tree(self.root, rejections=rejections, effects=effects, ascii=ascii)
-
     def to_dict(self) -> dict[str, Any]:
         return {"ok": True, "domain": self.domain, **tree_to_dict(self.root),
                 "state": self.state.to_dict(), "stats": self.stats.to_dict()}
@@ -288,11 +283,6 @@ class PlanningFailed(Exception):
     @property
     def reason(self) -> str:
         return str(self.failure)
-
-    def explain(self, *, ascii: bool = False) -> str:
-        from .explain import render_tree
-
-        return render_tree(self.root, ascii=ascii)
 
     def to_dict(self) -> dict[str, Any]:
         return {"ok": False, "reason": self.failure.headline(), "failure": self.failure.to_dict(),

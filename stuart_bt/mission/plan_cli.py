@@ -8,7 +8,7 @@ import argparse
 import sys
 from typing import Any
 
-from ..htn.explain import steps_text
+from ..htn.explain import explain, steps_text
 from ..jsonfile import to_json
 
 
@@ -118,7 +118,7 @@ def _plan_or_explain_why_not(planner: Any, tasks: Any, state: Any, args: argpars
             print(str(e))
             if any(n.status == "planned" and n.kind != "mission" for n in e.root.walk()):
                 print("\ndecomposition so far:")
-                print(e.explain(ascii=args.ascii))
+                print(explain(e, ascii=args.ascii))
     except PlanningBudgetExceeded as e:
         if args.json:
             print(to_json(e.to_dict(), indent=2))
@@ -131,7 +131,7 @@ def _print_plan(plan: Any, args: argparse.Namespace) -> None:
     s = plan.stats
     print(f"plan for {', '.join(t.call for t in plan.tasks)}: {len(steps)} steps "
           f"({s.expansions} expansions, {s.backtracks} backtracks, {s.seconds * 1000:.2f} ms)\n")
-    print(plan.explain(rejections=not args.no_rejections, ascii=args.ascii))
+    print(explain(plan, rejections=not args.no_rejections, ascii=args.ascii))
     print("\nsteps:")
     print(steps_text(steps))
     if args.show:
