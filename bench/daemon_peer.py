@@ -11,9 +11,9 @@ from __future__ import annotations
 import tempfile
 import time
 
-from stuart_bt.clock import WallClock
+from stuart_bt.core.clock import WallClock
+from stuart_bt.core.events import EventStream
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventStream
 
 from .sink import EventCounter
 from .stats import gc_paused

@@ -109,7 +109,8 @@ SMALL_MISSIONS: dict[str, list[tuple[str, ...]]] = {
 
 
 def project_candidates() -> dict[str, Callable[[], object]]:
-    from stuart_bt.htn import Planner, lab_world, project_domain
+    from stuart_bt.htn import Planner, lab_world
+    from stuart_bt.tasks import project_domain
 
     domain = project_domain()
     state = domain.initial_state(lab_world())

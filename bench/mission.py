@@ -28,7 +28,7 @@ import threading
 import time
 from dataclasses import dataclass, field
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
 from .result import Anchor, Result

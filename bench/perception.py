@@ -91,7 +91,7 @@ def placements(world: Any, count: int, seed: int) -> tuple[list[float], list[flo
 
 def pipeline_rate(frames: list[Any], seconds: float) -> tuple[float, int]:
     """Frames per second of detection + projection + memory on recorded frames read back."""
-    from stuart_bt.clock import ManualClock
+    from stuart_bt.core.clock import ManualClock
     from stuart_bt.perception.memory import SpatialMemory
     from stuart_bt.perception.pipeline import Perception
     from stuart_bt.perception.projection import CameraMount
@@ -155,7 +155,7 @@ root:
 
 
 def tour_rate(with_vision: bool) -> float:
-    from stuart_bt.runner import RunOptions, Session
+    from stuart_bt.run.session import RunOptions, Session
     from stuart_bt.tree.loader import load_tree_text
 
     text = VISION_TOUR if with_vision else "\n".join(line for line in VISION_TOUR.splitlines() if "find" not in line)

@@ -1,7 +1,7 @@
 """sim: the MuJoCo world under a real tree, against the world running on its own.
 
 What a user of ``--backend sim`` waits for is the lab tour, so that is what is timed: the whole
-``trees/lab_tour.yaml`` through :class:`stuart_bt.runner.Session` with ``backend="sim"``, in this
+``trees/lab_tour.yaml`` through :class:`stuart_bt.run.session.Session` with ``backend="sim"``, in this
 process, headless, no view. In lockstep the world can never run faster than it does free (no
 driver, nothing to wait for), so the anchor is that free-running rate, measured in worlds
 launched just before and just after each tour run (never during one: a free-running world
@@ -86,7 +86,7 @@ def _free_rate(world: Any, window: float) -> float:
 
 def run_tour(seed: int = 0) -> TourRun:
     """The lab tour on the sim backend, in process; raises unless it ends in SUCCESS at every station."""
-    from stuart_bt.runner import RunOptions, Session
+    from stuart_bt.run.session import RunOptions, Session
     from stuart_bt.tree.loader import load_tree
 
     spec = load_tree(str(TOUR))

@@ -6,7 +6,7 @@ one; counting what arrives also lets a benchmark say how many events it caused.
 
 from __future__ import annotations
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 
 
 class EventCounter:

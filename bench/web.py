@@ -29,9 +29,9 @@ import threading
 import time
 from typing import Any
 
-from stuart_bt.clock import ManualClock
-from stuart_bt.events import EventStream
-from stuart_bt.executor import Executor
+from stuart_bt.core.clock import ManualClock
+from stuart_bt.core.events import EventStream
+from stuart_bt.run.executor import Executor
 
 from .result import Anchor, Result
 from .sink import EventCounter

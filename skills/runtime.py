@@ -27,15 +27,26 @@ import traceback
 from collections.abc import Mapping
 from typing import Any
 
-from stuart_bt.clock import clock_from_spec
+from stuart_bt.core.clock import Clock, clock_from_spec
+from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.daemon import protocol as p
 from stuart_bt.daemon.backend import Activity, Backend, DaemonError, Done, Progress, StartupError
-from stuart_bt.suggest import did_you_mean
 
 POLL_PERIOD = 0.01  # wall seconds between polls of activities that give no next_due()
 READ_CHUNK = 1 << 16
 EXIT_FLUSH_SECONDS = 0.5  # how long to try delivering the last replies before exiting
 PR_SET_PDEATHSIG = 1
+
+
+
+def _clock(spec: str | None) -> Clock:
+    """The framework's clock from its spec: ``sim:PATH`` is the simulator's shared clock file
+    (read only: the world drives it), anything else as :func:`clock_from_spec` reads it."""
+    if spec and spec.startswith("sim:"):
+        from stuart_bt.sim.world.clock import SimClock
+
+        return SimClock(spec.removeprefix("sim:"), driver=False)
+    return clock_from_spec(spec)
 
 
 def main(family: str, backends: Mapping[str, str], argv: list[str] | None = None) -> int:
@@ -47,7 +58,7 @@ def main(family: str, backends: Mapping[str, str], argv: list[str] | None = None
     _die_with_parent()
     try:
         backend_cls = _load_backend(family, backends, options.backend)
-        clock = clock_from_spec(options.clock)
+        clock = _clock(options.clock)
         backend_options = json.loads(options.options)
         if not isinstance(backend_options, dict):
             raise ValueError("--options must be a JSON object")

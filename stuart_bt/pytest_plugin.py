@@ -21,10 +21,10 @@ from typing import TYPE_CHECKING, Any
 
 import pytest
 
-from .jsonfile import to_json
+from .core.jsonfile import to_json
 
 if TYPE_CHECKING:  # imported when a fixture runs: pytest starts no slower for having stuart_bt installed
-    from .runner import RunOptions
+    from .run.session import RunOptions
     from .testing import Hook, RunResult
 
 RUNS = pytest.StashKey["list[RunResult]"]()

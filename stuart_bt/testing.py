@@ -43,8 +43,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from .executor import RunOutcome
-from .runner import RunOptions, Session
+from .run.executor import RunOutcome
+from .run.session import RunOptions, Session
 from .tree.loader import load_tree, load_tree_text
 from .tree.spec import TreeSpec
 

@@ -12,9 +12,9 @@ import math
 import re
 from typing import Any
 
-from stuart_bt.gestures import lookup as gesture_lookup
+from stuart_bt.core.gestures import lookup as gesture_lookup
+from stuart_bt.core.world import Pose
 from stuart_bt.htn.hooks import HookRegistry
-from stuart_bt.world import Pose
 
 HOOKS = HookRegistry()
 PLACE_AHEAD = 0.4  # metres in front of the robot where a released object lands (the dry backend's figure)
@@ -25,7 +25,7 @@ _LABEL = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")  # what a $world.objects.<label
 # -- conditions ---------------------------------------------------------------------------------------
 @HOOKS.condition
 def known_gesture(state: Any, name: str) -> bool:
-    """The gesture library (stuart_bt.gestures) knows this name, an alias or a vendor id."""
+    """The gesture library (stuart_bt.core.gestures) knows this name, an alias or a vendor id."""
     return isinstance(name, str) and gesture_lookup(name) is not None
 
 

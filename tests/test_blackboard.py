@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from stuart_bt.blackboard import Blackboard, render_template
-from stuart_bt.clock import ManualClock
-from stuart_bt.events import EventRecorder, EventStream
+from stuart_bt.core.blackboard import Blackboard, render_template
+from stuart_bt.core.clock import ManualClock
+from stuart_bt.core.events import EventRecorder, EventStream
 
 
 def test_dotted_set_creates_nested_dicts_and_get_reads_them():

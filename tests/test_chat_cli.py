@@ -25,7 +25,7 @@ class ChatProcess:
     """The chat in a child process; ``expect`` waits for an output line matching a pattern."""
 
     def __init__(self, *args: str) -> None:
-        self.proc = subprocess.Popen([sys.executable, "-m", "stuart_bt.mission.chat", *args], cwd=REPO,
+        self.proc = subprocess.Popen([sys.executable, "-m", "stuart_bt.cli.chat", *args], cwd=REPO,
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                      text=True, bufsize=1)
         self.lines: list[str] = []
@@ -131,7 +131,7 @@ def test_command_conversation_stop_and_quit(chat_process):
 def test_piped_script_runs_to_the_end_of_input(tmp_path: Path):
     """A whole script at once, no :quit: end of input lets the mission finish, then exits."""
     script = "go to the kitchen\n:wait\nwhat is your name\n"
-    done = subprocess.run([sys.executable, "-m", "stuart_bt.mission.chat", "--no-wake", "--speed", "50"],
+    done = subprocess.run([sys.executable, "-m", "stuart_bt.cli.chat", "--no-wake", "--speed", "50"],
                           check=False, cwd=REPO,
                           input=script, capture_output=True, text=True, timeout=60)
 
@@ -167,12 +167,12 @@ def test_unknown_console_command_says_what_exists(chat_process):
     assert chat.finish() == 0
 
 
-def test_chat_is_registered_through_add_chat_command():
+def test_chat_is_registered_through_its_add_command():
     import argparse
 
-    from stuart_bt.mission.chat import add_chat_command, cmd_chat
+    from stuart_bt.cli.chat import add_command, cmd_chat
 
     parser = argparse.ArgumentParser(prog="stuart-bt")
-    add_chat_command(parser.add_subparsers())
+    add_command(parser.add_subparsers())
     args = parser.parse_args(["chat", "--backend", "dry", "--no-wake", "--speed", "3"])
     assert args.func is cmd_chat and args.no_wake and args.speed == 3.0 and args.backend == "dry"

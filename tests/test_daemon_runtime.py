@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.clock import ScaledClock
 from stuart_bt.daemon import protocol as p
 
 NOISY = Path(__file__).parent / "fakes" / "noisy_daemon.py"

@@ -7,9 +7,9 @@ import time
 
 import pytest
 
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.clock import ScaledClock
+from stuart_bt.core.events import EventRecorder, EventStream
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventRecorder, EventStream
 
 FACTOR = 40.0
 

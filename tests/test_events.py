@@ -3,7 +3,7 @@ kind, time and path, whatever keys their data has, and read back the same."""
 
 import json
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 
 
 def test_an_utterance_keeps_its_kind_and_its_data_kind_survives_the_round_trip():

@@ -8,9 +8,9 @@ import time
 import py_trees
 from py_trees.common import Status
 
-from stuart_bt.clock import ManualClock, ScaledClock
-from stuart_bt.events import EventRecorder, EventStream
-from stuart_bt.executor import Executor
+from stuart_bt.core.clock import ManualClock, ScaledClock
+from stuart_bt.core.events import EventRecorder, EventStream
+from stuart_bt.run.executor import Executor
 
 
 class Counter(py_trees.behaviour.Behaviour):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from stuart_bt import expr
-from stuart_bt.blackboard import Blackboard
+from stuart_bt.core import expr
+from stuart_bt.core.blackboard import Blackboard
 
 
 @pytest.fixture

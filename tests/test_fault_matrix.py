@@ -18,12 +18,12 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt.catalogue import FAMILIES
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.catalogue import FAMILIES
+from stuart_bt.core.clock import ScaledClock
+from stuart_bt.core.events import EventRecorder, EventStream
 from stuart_bt.daemon import limits
 from stuart_bt.daemon import protocol as p
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventRecorder, EventStream
 from test_daemon_runtime import Daemon
 
 FAULTY = Path(__file__).parent / "fakes" / "faulty_daemon.py"

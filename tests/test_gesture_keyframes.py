@@ -9,7 +9,7 @@ import json
 import numpy as np
 import pytest
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
 from stuart_bt.skills.gesture.backend import Keyframe
 from stuart_bt.skills.gesture.keyframes import (
     NEUTRAL,

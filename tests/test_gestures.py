@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
 
 
 @pytest.mark.parametrize(("spoken", "canonical", "action_id"), [

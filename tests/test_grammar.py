@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
 from stuart_bt.language.grammar import Defaults, Grammar, parse_command, tokenize
 from stuart_bt.language.intents import ACTIONS, TaskIntent, confirmation
 

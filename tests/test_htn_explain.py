@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.cli.plan import add_command
 from stuart_bt.htn import Planner, PlanningFailed, explain, load_domain_text
-from stuart_bt.mission.plan_cli import add_plan_command
 
 ERRANDS = textwrap.dedent("""\
     domain: errands
@@ -125,7 +125,7 @@ def test_the_json_form_keeps_the_tree_the_steps_and_the_rejections() -> None:
 # -- the CLI command ------------------------------------------------------------------------------------
 def run_cli(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
     parser = argparse.ArgumentParser(prog="stuart-bt")
-    add_plan_command(parser.add_subparsers(dest="command", required=True))
+    add_command(parser.add_subparsers(dest="command", required=True))
     args = parser.parse_args(argv)
     code = args.func(args)
     out, err = capsys.readouterr()

@@ -7,12 +7,12 @@ import argparse
 import json
 from pathlib import Path
 
-from stuart_bt.mission.cli import add_mission_command
+from stuart_bt.cli.mission import add_command
 
 
 def mission(*argv: str) -> int:
     parser = argparse.ArgumentParser(prog="stuart-bt")
-    add_mission_command(parser.add_subparsers())
+    add_command(parser.add_subparsers())
     args = parser.parse_args(["mission", *argv])
     return args.func(args)
 

@@ -7,12 +7,13 @@ import py_trees
 import pytest
 from py_trees.common import Status
 
-from stuart_bt.blackboard import Blackboard
-from stuart_bt.clock import ManualClock
-from stuart_bt.htn import Planner, lab_world, project_domain
+from stuart_bt.core.blackboard import Blackboard
+from stuart_bt.core.clock import ManualClock
+from stuart_bt.core.world import KnownObject
+from stuart_bt.htn import Planner, lab_world
 from stuart_bt.mission.compiler import compile_plan, show
+from stuart_bt.tasks import project_domain
 from stuart_bt.tree.builder import build
-from stuart_bt.world import KnownObject
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
 FAMILIES = {"loco", "tts", "gesture", "pick", "vision"}

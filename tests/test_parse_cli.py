@@ -2,7 +2,7 @@
 mode that never stops and flushes every line, options, and errors without tracebacks.
 
 Runs ``stuart-bt parse`` when the main CLI has the command, else the same code standalone
-(``python -m stuart_bt.language.cli``)."""
+(``python -m stuart_bt.cli.parse``)."""
 
 from __future__ import annotations
 
@@ -24,11 +24,8 @@ INTENT_KEYS = {"action", "target", "x", "y", "yaw", "raw_text"}
 
 
 def _command() -> list[str]:
-    main_cli = (REPO / "stuart_bt" / "cli.py").read_text(encoding="utf-8")
     script = Path(sys.executable).with_name("stuart-bt")
-    if "add_parse_command" in main_cli and script.exists():
-        return [str(script), "parse"]
-    return [sys.executable, "-m", "stuart_bt.language.cli"]
+    return [str(script), "parse"] if script.exists() else [sys.executable, "-m", "stuart_bt.cli", "parse"]
 
 
 CLI = _command()

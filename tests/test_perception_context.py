@@ -4,8 +4,8 @@ never objects merely listed in the catalogue."""
 from __future__ import annotations
 
 from stuart_bt.conversation import build_messages
+from stuart_bt.core.world import KnownObject, Marker, Pose, WorldState
 from stuart_bt.perception.context import seen_objects
-from stuart_bt.world import KnownObject, Marker, Pose, WorldState
 
 
 def lab() -> WorldState:

@@ -13,6 +13,7 @@ import pytest
 pytest.importorskip("cv2", reason="perception needs the 'vision' extra (opencv-python-headless)")
 pytest.importorskip("mujoco", reason="rendered frames need the 'sim' extra (mujoco)")
 
+from stuart_bt.core.world import Pose
 from stuart_bt.perception.frames import CameraError, Frame, Intrinsics
 from stuart_bt.perception.pipeline import Perception
 from stuart_bt.perception.projection import CameraMount, project, world_to_torso
@@ -21,7 +22,6 @@ from stuart_bt.perception.sim_camera import DepthNoise, SimCamera
 from stuart_bt.perception.sim_detector import SimDetector
 from stuart_bt.perception.yolo import DetectorConfigError, YoloDetector
 from stuart_bt.sim.world.client import launch_world
-from stuart_bt.world import Pose
 
 KITCHEN = (3.5, 1.5, 0.0)
 BOTTLE_REST_Z, APPLE_REST_Z = 0.855, 0.79  # object centres standing on the kitchen table

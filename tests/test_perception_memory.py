@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from stuart_bt.clock import ManualClock
+from stuart_bt.core.clock import ManualClock
 from stuart_bt.perception.memory import MemoryConfig, Observation, SpatialMemory
 
 

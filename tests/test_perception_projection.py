@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from stuart_bt.core.world import Pose
 from stuart_bt.perception.frames import Intrinsics
 from stuart_bt.perception.projection import (
     TORSO_HEIGHT,
@@ -21,7 +22,6 @@ from stuart_bt.perception.projection import (
     torso_to_world,
     world_to_torso,
 )
-from stuart_bt.world import Pose
 
 K = Intrinsics(fx=300.0, fy=300.0, cx=199.5, cy=99.5, width=400, height=200)
 

@@ -75,7 +75,7 @@ class Listener:
 
     def reply(self, text, context):
         from stuart_bt.conversation import build_messages
-        from stuart_bt.mission.commands import Reply
+        from stuart_bt.conversation.reply import Reply
 
         self.contexts.append(context)
         prompt = build_messages(text, context)[-1]["content"]

@@ -9,9 +9,9 @@ from typing import Any
 
 import pytest
 
+from stuart_bt.conversation.reply import CannedConversation
 from stuart_bt.language import Parser
 from stuart_bt.mission import proposals
-from stuart_bt.mission.commands import CannedConversation
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
 

@@ -15,8 +15,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from stuart_bt.catalogue import FAMILIES
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.catalogue import FAMILIES
+from stuart_bt.core.clock import ScaledClock
 from stuart_bt.daemon import protocol as p
 
 FAMILY_COMMANDS = {"loco": ["navigate", "turn"], "tts": ["say"], "gesture": ["play"],

@@ -16,12 +16,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.clock import ScaledClock
+from stuart_bt.core.events import EventRecorder, EventStream
+from stuart_bt.core.world import Pose, PoseError
 from stuart_bt.daemon import protocol as p
 from stuart_bt.daemon.limits import FAULTY_LINES, FULL_WARNINGS
 from stuart_bt.daemon.supervisor import Supervisor
-from stuart_bt.events import EventRecorder, EventStream
-from stuart_bt.world import Pose, PoseError
 
 FAKES = Path(__file__).parent / "fakes"
 

@@ -18,7 +18,7 @@ import pytest
 pytest.importorskip("rclpy", reason="the ros extra (real rclpy) is not installed: pip install -e '.[ros]'")
 
 from ros_harness import BridgeProcess, Lines, RosClient, alive, ros_env, session_domain_id
-from stuart_bt.catalogue import FAMILIES
+from stuart_bt.core.catalogue import FAMILIES
 
 KITCHEN = (3.5, 1.5)  # sim/maps/lab_markers.json
 ARRIVAL = 0.5  # m: the original system's arrival tolerance
@@ -154,8 +154,8 @@ def test_a_signal_during_a_mission_stops_the_tree_and_the_daemons_and_leaves_no_
 # by its SpatialMemory, when told to on stdin.
 MEMORY_BRIDGE = r"""
 import sys
-from stuart_bt.clock import ScaledClock
-from stuart_bt.events import EventStream
+from stuart_bt.core.clock import ScaledClock
+from stuart_bt.core.events import EventStream
 from stuart_bt.perception.memory import Observation, SpatialMemory
 from stuart_bt.ros.node import Bridge
 

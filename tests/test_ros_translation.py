@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 from stuart_bt.ros import topics as t
 

@@ -7,7 +7,7 @@ import os
 import signal
 import time
 
-from stuart_bt.runner import Session
+from stuart_bt.run.session import Session
 from stuart_bt.testing import run_tree
 
 

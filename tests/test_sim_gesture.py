@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
 from stuart_bt.skills.gesture.keyframes import NEUTRAL, end_pose
 from stuart_bt.testing import RunResult, is_arm_joint, run_tree
 

@@ -13,9 +13,9 @@ from typing import Any
 
 import pytest
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
+from stuart_bt.core.world import KnownObject
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
-from stuart_bt.world import KnownObject
 
 pytestmark = pytest.mark.sim
 

@@ -2,9 +2,9 @@
 
 import json
 
-from stuart_bt.events import EventRecorder
-from stuart_bt.runner import RunOptions, Session
-from stuart_bt.snapshot import FORMAT, TreeSnapshot
+from stuart_bt.core.events import EventRecorder
+from stuart_bt.run.session import RunOptions, Session
+from stuart_bt.run.snapshot import FORMAT, TreeSnapshot
 from stuart_bt.testing import lab_markers
 from stuart_bt.tree.loader import load_tree_text
 
@@ -50,7 +50,7 @@ def test_snapshot_follows_a_run_and_replays_from_the_log():
 
 def test_a_new_tree_event_replaces_the_structure():
     snap = TreeSnapshot()
-    from stuart_bt.events import Event
+    from stuart_bt.core.events import Event
 
     snap.apply(Event(0.0, "tree", data={"file": "a", "root": {"path": "a", "name": "a", "kind": "sequence",
                                                              "category": "composite", "children": []}}))

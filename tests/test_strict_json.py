@@ -13,11 +13,11 @@ from typing import Any
 
 import pytest
 
-from stuart_bt.clock import ManualClock
-from stuart_bt.events import Event, EventStream
-from stuart_bt.jsonfile import to_json
+from stuart_bt.core.clock import ManualClock
+from stuart_bt.core.events import Event, EventStream
+from stuart_bt.core.jsonfile import to_json
 from stuart_bt.ros.topics import EventTranslator
-from stuart_bt.snapshot import TreeSnapshot
+from stuart_bt.run.snapshot import TreeSnapshot
 
 REPO = Path(__file__).resolve().parents[1]
 

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt.catalogue import FAMILIES
-from stuart_bt.clock import ScaledClock
+from stuart_bt.core.catalogue import FAMILIES
+from stuart_bt.core.clock import ScaledClock
+from stuart_bt.core.events import EventRecorder, EventStream
 from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-from stuart_bt.events import EventRecorder, EventStream
 
 FAKES = Path(__file__).parent / "fakes"
 CLOCK = ScaledClock(20)
@@ -283,8 +283,8 @@ def test_asking_for_a_family_that_is_not_there_suggests_one(make):
 def test_a_killed_tree_process_leaves_no_daemon_running(tmp_path):
     tree = subprocess.Popen([sys.executable, "-c", (
         "import sys, time\n"
-        "from stuart_bt.clock import ScaledClock\n"
-        "from stuart_bt.events import EventStream\n"
+        "from stuart_bt.core.clock import ScaledClock\n"
+        "from stuart_bt.core.events import EventStream\n"
         "from stuart_bt.daemon.supervisor import Supervisor\n"
         "sup = Supervisor('dry', ScaledClock(20), EventStream(ScaledClock(20)), families=('loco',),\n"
         f"                 run_dir={str(tmp_path)!r})\n"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from stuart_bt.events import Event
+from stuart_bt.core.events import Event
 from stuart_bt.mission import executor as mx
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
@@ -45,8 +45,8 @@ def test_a_reply_that_waited_too_long_is_dropped_unsaid():
 
 
 def test_a_long_mission_session_keeps_a_bounded_event_history():
-    from stuart_bt.clock import ManualClock
-    from stuart_bt.events import EventRecorder, EventStream
+    from stuart_bt.core.clock import ManualClock
+    from stuart_bt.core.events import EventRecorder, EventStream
 
     stream = EventStream(ManualClock())
     recorder = EventRecorder(stream, limit=100)

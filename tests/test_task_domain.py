@@ -11,10 +11,11 @@ from typing import Any
 
 import pytest
 
-from stuart_bt.catalogue import LEAVES
-from stuart_bt.htn import Plan, Planner, PlanningFailed, State, lab_world, project_domain
+from stuart_bt.core.catalogue import LEAVES
+from stuart_bt.core.world import Pose
+from stuart_bt.htn import Plan, Planner, PlanningFailed, State, lab_world
 from stuart_bt.htn.domain import check_skill_args
-from stuart_bt.world import Pose
+from stuart_bt.tasks import project_domain
 
 INTENTS = {"navigate_to_marker", "move_relative", "turn_by_angle", "turn_around", "pick_up", "gesture", "stop", "find"}
 

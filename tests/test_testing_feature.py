@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from stuart_bt.executor import RunOutcome
+from stuart_bt.run.executor import RunOutcome
 from stuart_bt.testing import RunResult, at, when
 
 PLUGIN_CONFTEST = """

@@ -8,8 +8,8 @@ import py_trees
 import pytest
 from py_trees.common import OneShotPolicy, ParallelPolicy, Status
 
-from stuart_bt.blackboard import Blackboard
-from stuart_bt.clock import ManualClock
+from stuart_bt.core.blackboard import Blackboard
+from stuart_bt.core.clock import ManualClock
 from stuart_bt.tree.builder import BuildError, build
 from stuart_bt.tree.decorators import Delay, Guard, Timeout
 from stuart_bt.tree.loader import load_tree_text

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
 from unitree_fake import FakeRobot
 
 pytest.importorskip("unitree_sdk2py", reason="the unitree backends need the 'robot' extra")

@@ -13,8 +13,8 @@ import pytest
 
 pytest.importorskip("starlette", reason="the web view needs the web extra")
 
-from stuart_bt.clock import ManualClock
-from stuart_bt.events import EventStream
+from stuart_bt.core.clock import ManualClock
+from stuart_bt.core.events import EventStream
 from stuart_bt.web.hub import EventHub
 
 TREE = {"file": "t.yaml", "description": None,

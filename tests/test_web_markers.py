@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.core.world import load_markers
 from stuart_bt.web.mapfile import MapFile, default_map
 from stuart_bt.web.markers import MarkerConflict, MarkerEditError, MarkerStore
-from stuart_bt.world import load_markers
 
 LAB_MARKERS = Path(str(files("stuart_bt.sim").joinpath("maps/lab_markers.json")))
 

@@ -195,9 +195,9 @@ def robot(robot_of_this_file, request):
 def unitree_daemon(robot, tmp_path):
     """``unitree_daemon(family, factor=1.0, **options)``: a started unitree daemon talking to
     ``robot``; shut down after the test."""
-    from stuart_bt.clock import ScaledClock
+    from stuart_bt.core.clock import ScaledClock
+    from stuart_bt.core.events import EventRecorder, EventStream
     from stuart_bt.daemon.supervisor import Supervisor
-    from stuart_bt.events import EventRecorder, EventStream
 
     made: list[Supervisor] = []
 
@@ -217,9 +217,9 @@ def unitree_daemon(robot, tmp_path):
 
 def start_failure(family: str, options: dict[str, Any], run_dir: Path) -> str:
     """The message of the DaemonStartError a unitree daemon with ``options`` gives."""
-    from stuart_bt.clock import ScaledClock
+    from stuart_bt.core.clock import ScaledClock
+    from stuart_bt.core.events import EventStream
     from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
-    from stuart_bt.events import EventStream
 
     clock = ScaledClock(1.0)
     sup = Supervisor("unitree", clock, EventStream(clock), families=(family,), options={family: options},

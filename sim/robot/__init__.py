@@ -9,17 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .description import (
-    NEUTRAL,
-    REACH,
-    SIDES,
-    Robot,
-    arm_joints,
-    arm_limits,
-    g1,
-    hand_joints,
-    shoulder_xyz,
-)
+from .description import NEUTRAL, REACH, SIDES, Robot, arm_joints, arm_limits, g1, hand_joints, shoulder_xyz
 
 MODELS_DIR = Path(__file__).resolve().parents[1] / "models"
 MJCF_PATH = MODELS_DIR / "g1.xml"

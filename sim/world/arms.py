@@ -16,20 +16,13 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from .errors import WorldError
+
 HAND_JOINTS = ("thumb_0", "thumb_1", "thumb_2", "index_0", "index_1", "middle_0", "middle_1")
 SIDES = ("left", "right")
 HAND_TIME = 0.5  # sim seconds to open or close a hand
 CLOSED_FRACTION = 0.8  # a closed finger joint sits at this fraction of its range's far end
 GRASP_RADIUS = 0.06  # metres from the hand point to an object's centre that a closing hand catches
-
-
-class ArmError(Exception):
-    """A rejected arm command (``code`` as in the world protocol); nothing moved."""
-
-    def __init__(self, code: str, reason: str) -> None:
-        super().__init__(f"{code}: {reason}")
-        self.code = code
-        self.reason = reason
 
 
 def side_of(joint: str) -> str | None:
@@ -94,29 +87,29 @@ class JointPlayer:
         self.trajectories: list[_Trajectory] = []
 
     def start(self, points: object, traj_id: str, now: float, smooth: bool = False) -> dict[str, Any]:
-        """Check and start a trajectory; raises :class:`ArmError` before anything moves."""
+        """Check and start a trajectory; raises :class:`WorldError` before anything moves."""
         if not isinstance(points, list) or not points:
-            raise ArmError("bad_request", "'points' must be a non-empty list of {t, joints}")
+            raise WorldError("bad_request", "'points' must be a non-empty list of {t, joints}")
         named: list[str] = []
         times = [0.0]
         rows: list[dict[str, float]] = []
         for n, point in enumerate(points):
             if not isinstance(point, dict) or not isinstance(point.get("joints"), dict):
-                raise ArmError("bad_request", f"point {n} must be an object with 't' and 'joints'")
+                raise WorldError("bad_request", f"point {n} must be an object with 't' and 'joints'")
             t = point.get("t")
             if isinstance(t, bool) or not isinstance(t, (int, float)) or not np.isfinite(t):
-                raise ArmError("bad_request", f"point {n}: 't' must be a number (sim seconds from now)")
+                raise WorldError("bad_request", f"point {n}: 't' must be a number (sim seconds from now)")
             if t < 0 or (n > 0 and t <= times[-1]):
-                raise ArmError("bad_request", f"point {n}: 't' must be >= 0 and increase from point to point")
+                raise WorldError("bad_request", f"point {n}: 't' must be >= 0 and increase from point to point")
             row: dict[str, float] = {}
             for name, value in point["joints"].items():
                 if name not in self.index:
-                    raise ArmError("not_found", f"point {n}: no joint {name!r}")
+                    raise WorldError("not_found", f"point {n}: no joint {name!r}")
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-                    raise ArmError("bad_request", f"point {n}: {name} must be a finite number")
+                    raise WorldError("bad_request", f"point {n}: {name} must be a finite number")
                 i = self.index[name]
                 if not self.lower[i] - 1e-9 <= value <= self.upper[i] + 1e-9:
-                    raise ArmError("out_of_range", f"point {n}: {name} = {value:.4f} is outside its limits "
+                    raise WorldError("out_of_range", f"point {n}: {name} = {value:.4f} is outside its limits "
                                    f"[{self.lower[i]:.4f}, {self.upper[i]:.4f}]")
                 row[name] = float(value)
                 if name not in named:
@@ -223,10 +216,10 @@ class Hands:
 
     def command(self, side: str, closed: bool, data: mujoco.MjData, now: float) -> dict[str, Any]:
         if side not in SIDES:
-            raise ArmError("bad_request", f"side must be left or right, got {side!r}")
+            raise WorldError("bad_request", f"side must be left or right, got {side!r}")
         open_pose, closed_pose = hand_poses(self.player, side)
         if not open_pose:
-            raise ArmError("not_found", f"the robot has no {side} hand joints")
+            raise WorldError("not_found", f"the robot has no {side} hand joints")
         target = closed_pose if closed else open_pose
         self.player.start([{"t": HAND_TIME, "joints": target}], f"{side}_hand", now, smooth=True)
         self.state[side] = "closing" if closed else "opening"

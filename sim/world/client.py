@@ -25,21 +25,12 @@ import time
 from pathlib import Path
 from typing import IO, Any
 
-from stuart_bt.jsonfile import to_json
+from stuart_bt.core.jsonfile import to_json
 
 from .clock import SimClock, default_clock_path
+from .errors import WorldError
 
 READ_CHUNK = 1 << 16
-
-
-class WorldError(Exception):
-    """The world refused a request (``code`` as in docs/sim.md), or could not be reached
-    (``code`` ``disconnected`` / ``timeout``)."""
-
-    def __init__(self, code: str, reason: str) -> None:
-        super().__init__(f"{code}: {reason}")
-        self.code = code
-        self.reason = reason
 
 
 class WorldClient:

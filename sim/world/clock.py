@@ -137,7 +137,7 @@ class ClockFile:
 
 
 class SimClock:
-    """The world's sim time behind the :class:`stuart_bt.clock.Clock` protocol.
+    """The world's sim time behind the :class:`stuart_bt.core.clock.Clock` protocol.
 
     ``driver=True`` (one per world: the executor) makes the world run in lockstep with this
     clock's :meth:`sleep_until`; any other process uses ``driver=False`` and only reads. When the

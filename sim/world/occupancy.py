@@ -28,7 +28,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from stuart_bt.jsonfile import read_json
+from stuart_bt.core.jsonfile import read_json
 
 FLOOR_CLEAR = 0.03  # geoms entirely below this (rugs, mats) do not block
 ROBOT_HEIGHT = 1.5  # geoms entirely above this (lintels, lamps) do not block
@@ -383,8 +383,8 @@ def draw_map_png(grid: OccupancyGrid, markers: Mapping[str, Mapping[str, float]]
 
 def load_markers(path: str | Path | None = None) -> dict[str, dict[str, float]]:
     """The named markers (default: sim/maps/lab_markers.json); a regular file under the data
-    file size limit only (stuart_bt.jsonfile.read_json)."""
-    from stuart_bt.world import MarkerFileError
+    file size limit only (stuart_bt.core.jsonfile.read_json)."""
+    from stuart_bt.core.world import MarkerFileError
 
     from .scene import MAPS_DIR
 

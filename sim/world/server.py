@@ -35,14 +35,15 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from stuart_bt.core.errors import CodedError
+from stuart_bt.core.jsonfile import is_finite_number, to_json
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import DaemonError
 from stuart_bt.daemon.protocol import MAX_LINE, LineBuffer, Oversize, ProtocolError, decode, encode
-from stuart_bt.jsonfile import to_json
 
-from .arms import SIDES, ArmError, Hands, JointPlayer
+from .arms import SIDES, Hands, JointPlayer
 from .base import BaseController, BaseLimits, PersonCheck, wrap
 from .clock import ClockFile
+from .errors import WorldError
 from .occupancy import OccupancyGrid, draw_map_png, footprint_hits, load_markers, static_footprints
 from .render import Cameras, Recorder, save_png
 from .scene import MAPS_DIR, Scene, build_scene
@@ -56,18 +57,8 @@ PATH_LOG_STEP = 0.02  # metres between logged points of the driven path
 RATE_WINDOW = 0.25  # wall seconds over which the sim/wall rate is measured
 VIEWER_PERIOD = 1.0 / 60.0
 LOC_NOISE = (0.01, 0.01, math.radians(0.5))  # sigma of x, y (m) and yaw (rad) with --loc-noise
-ERROR_CODES = ("bad_request", "unknown_command", "not_found", "out_of_range", "busy", "internal")
 
 Handler = Callable[[dict[str, Any]], dict[str, Any]]
-
-
-class WorldError(Exception):
-    """A request the world refuses; ``code`` is one of :data:`ERROR_CODES`."""
-
-    def __init__(self, code: str, reason: str) -> None:
-        super().__init__(f"{code}: {reason}")
-        self.code = code
-        self.reason = reason
 
 
 def _r(value: float, digits: int = 4) -> float:
@@ -271,7 +262,7 @@ class World:
             raise WorldError("bad_request", "base_path: 'waypoints' must be a non-empty list of [x, y]")
         waypoints = []
         for n, p in enumerate(raw):
-            if not isinstance(p, (list, tuple)) or len(p) != 2 or not all(_finite_number(v) for v in p):
+            if not isinstance(p, (list, tuple)) or len(p) != 2 or not all(is_finite_number(v) for v in p):
                 raise WorldError("bad_request", f"base_path: waypoint {n} must be [x, y], got {p!r}")
             waypoints.append((float(p[0]), float(p[1])))
         final_yaw = a.optional_number(args, "final_yaw", cmd)
@@ -506,19 +497,11 @@ class World:
     def handle(self, cmd: str, args: dict[str, Any]) -> dict[str, Any]:
         handler = self.commands.get(cmd)
         if handler is None:
-            from stuart_bt.suggest import did_you_mean
+            from stuart_bt.core.suggest import did_you_mean
 
             raise WorldError("unknown_command", f"no command {cmd!r}{did_you_mean(cmd, list(self.commands))}")
-        try:
-            return handler(args)
-        except DaemonError as e:
-            raise WorldError(e.code, e.reason) from None
-        except ArmError as e:
-            raise WorldError(e.code, e.reason) from None
+        return handler(args)  # argument checks raise the daemons' CodedError: answered the same way
 
-
-def _finite_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def _finite(value: float) -> float | None:
@@ -703,7 +686,7 @@ class Server:
             return {"id": request_id, "ok": True, "result": result}
         except ProtocolError as e:
             return {"id": request_id, "ok": False, "error": "bad_request", "reason": e.reason}
-        except WorldError as e:
+        except CodedError as e:  # a WorldError, or an argument check shared with the daemons
             return {"id": request_id, "ok": False, "error": e.code, "reason": e.reason}
         except Exception as e:  # noqa: BLE001 - a bug must not take the world down: report it, keep running
             traceback.print_exc()

@@ -1,6 +1,6 @@
 """What every gesture backend offers: play library gestures (one or a sequence) or keyframes.
 
-Names are resolved against :mod:`stuart_bt.gestures` here, so every backend rejects an unknown
+Names are resolved against :mod:`stuart_bt.core.gestures` here, so every backend rejects an unknown
 gesture the same way, with a suggestion, before anything moves.
 """
 
@@ -10,10 +10,10 @@ from abc import abstractmethod
 from dataclasses import dataclass
 from typing import Any
 
-from stuart_bt import gestures
+from stuart_bt.core import gestures
+from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, Backend, DaemonError, Handler
-from stuart_bt.suggest import did_you_mean
 
 UNKNOWN_GESTURE_VENDOR_CODE = 7402  # in the arm service's 74xx error range
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from stuart_bt import gestures
-from stuart_bt.clock import Clock
+from stuart_bt.core import gestures
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon.backend import TimedActivity
 
 from .backend import GestureBackend, Keyframe

@@ -1,7 +1,7 @@
 """Keyframe trajectories for the library gestures on the sim's arms and Dex3-1 hands, their
 validation, and the recorded-gesture file format.
 
-Why here and as data: the vendor plays its arm actions (ids in :mod:`stuart_bt.gestures`)
+Why here and as data: the vendor plays its arm actions (ids in :mod:`stuart_bt.core.gestures`)
 inside the robot; the simulator has to play something that looks like them, and recorded
 custom gestures use the same shape. Poses were designed with the sim model's forward
 kinematics (hand positions and palm directions noted next to each) and are kept as literal
@@ -30,10 +30,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from stuart_bt import gestures
-from stuart_bt.jsonfile import is_finite_number, to_json
+from stuart_bt.core import gestures
+from stuart_bt.core.errors import StuartError
+from stuart_bt.core.jsonfile import is_finite_number, to_json
+from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.sim.robot import description as desc
-from stuart_bt.suggest import did_you_mean
 
 from .backend import Keyframe
 
@@ -280,12 +281,16 @@ def end_pose(name: str) -> Pose:
 
 # --- validation -----------------------------------------------------------------------------------
 
-def _limits() -> dict[str, tuple[float, float]]:
+def joint_limits() -> dict[str, tuple[float, float]]:
+    """Limits of every joint a gesture may name (arms, hands, waist), from the robot description."""
     limits = desc.g1().limits()
     return {name: limits[name] for name in GESTURE_JOINTS}
 
 
-_LIMITS = _limits()
+_LIMITS = joint_limits()
+# how people group the gesture joints: (label, name prefix, is a hand); the more specific last
+JOINT_GROUPS = (("left arm", "left_", False), ("right arm", "right_", False), ("left hand", "left_hand_", True),
+                ("right hand", "right_hand_", True), ("waist", "waist_", False))
 
 
 def validate_keyframes(frames: Iterable[Keyframe | Mapping[str, Any]]) -> list[str]:
@@ -336,7 +341,7 @@ def validate_keyframes(frames: Iterable[Keyframe | Mapping[str, Any]]) -> list[s
 
 # --- recorded gesture files -------------------------------------------------------------------
 
-class GestureFileError(ValueError):
+class GestureFileError(StuartError, ValueError):
     """A gesture file that cannot be used; ``problems`` lists every reason."""
 
     def __init__(self, path: Path, problems: list[str]) -> None:

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from stuart_bt import gestures
-from stuart_bt.clock import Clock
+from stuart_bt.core import gestures
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.sim.world.client import WorldClient, WorldError
 

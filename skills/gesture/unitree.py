@@ -20,8 +20,8 @@ from typing import Any
 
 from unitree_sdk2py.g1.arm.g1_arm_action_client import G1ArmActionClient
 
-from stuart_bt import gestures
-from stuart_bt.clock import Clock
+from stuart_bt.core import gestures
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.skills import vendor

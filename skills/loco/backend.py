@@ -11,9 +11,9 @@ from abc import abstractmethod
 from dataclasses import dataclass
 from typing import Any
 
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, Backend, Handler
-from stuart_bt.world import Pose
 
 DEFAULT_TOLERANCE = 0.10  # metres
 DEFAULT_YAW_TOLERANCE = 0.0873  # radians (5 degrees)

@@ -18,12 +18,14 @@ from itertools import pairwise
 
 import numpy as np
 
+from stuart_bt.core.errors import StuartError
+
 SQRT2 = math.sqrt(2.0)
 NEIGHBOURS = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
               (1, 1, SQRT2), (1, -1, SQRT2), (-1, 1, SQRT2), (-1, -1, SQRT2)]
 
 
-class PlanningError(Exception):
+class PlanningError(StuartError):
     """No path: the reason says why (goal in an obstacle, off the map, no route)."""
 
 

@@ -20,10 +20,10 @@ import math
 from importlib import resources
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.sim.world.client import WorldClient, WorldError
-from stuart_bt.world import Pose
 
 from .backend import (
     ApproachGoal,

@@ -36,11 +36,11 @@ from unitree_sdk2py.idl.nav_msgs.msg.dds_ import Odometry_
 from unitree_sdk2py.idl.std_msgs.msg.dds_ import String_
 from unitree_sdk2py.rpc.client import Client
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.skills import vendor
-from stuart_bt.world import Pose
 
 from .backend import LocoBackend, MapGoal, NavigateGoal, RelativeGoal, goal_pose
 from .dry import wrap

@@ -9,9 +9,9 @@ from __future__ import annotations
 from abc import abstractmethod
 from typing import Any
 
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, Backend, Handler
-from stuart_bt.world import Pose
 
 ARMS = ("auto", "left", "right")
 

@@ -13,11 +13,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.suggest import did_you_mean
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, TimedActivity
-from stuart_bt.suggest import did_you_mean
-from stuart_bt.world import Pose
 
 from .backend import PickBackend
 

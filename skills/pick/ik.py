@@ -27,8 +27,8 @@ from typing import Literal
 
 import numpy as np
 
+from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.sim.robot import description as desc
-from stuart_bt.suggest import did_you_mean
 
 Arm = Literal["left", "right"]
 Orientation = Literal["down", "forward"] | None

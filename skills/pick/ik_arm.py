@@ -13,8 +13,8 @@ import functools
 import numpy as np
 import pinocchio as pin
 
+from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.sim.robot import NEUTRAL, URDF_PATH, arm_joints
-from stuart_bt.suggest import did_you_mean
 
 
 @functools.lru_cache(maxsize=1)

@@ -22,12 +22,12 @@ from typing import Any
 
 import numpy as np
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Delivered, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.sim.world.client import WorldClient, WorldError
-from stuart_bt.world import Pose
 
 from .backend import PickBackend
 from .ik import IKResult, check_reachable
@@ -252,7 +252,7 @@ class SimPick(PickBackend):
 def _object(state: dict[str, Any], label: str) -> dict[str, float]:
     objects = state.get("objects", {})
     if label not in objects:
-        from stuart_bt.suggest import did_you_mean
+        from stuart_bt.core.suggest import did_you_mean
 
         raise DaemonError("not_found", f"no object {label!r} in the world{did_you_mean(label, objects)}")
     return objects[label]

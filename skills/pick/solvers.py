@@ -4,7 +4,7 @@ caller loads only the library it uses."""
 
 from __future__ import annotations
 
-from stuart_bt.suggest import did_you_mean
+from stuart_bt.core.suggest import did_you_mean
 
 from .ik import SOLVERS, IKSolver
 

@@ -22,14 +22,14 @@ from typing import Any
 
 import numpy as np
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
 from stuart_bt.sim.robot import description as desc
 from stuart_bt.skills import vendor
 from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
 from stuart_bt.skills.gesture.keyframes import hand
-from stuart_bt.world import Pose
 
 from .dry import DryPick, Position, _lateral
 from .ik import check_reachable

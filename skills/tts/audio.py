@@ -12,7 +12,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon.backend import DaemonError
 
 from .dry import DryTts, Utterance, speaking_time

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon.backend import TimedActivity
 
 from .backend import TtsBackend

@@ -14,8 +14,10 @@ import wave
 from dataclasses import dataclass
 from pathlib import Path
 
+from stuart_bt.core.errors import StuartError
 
-class SynthesisError(RuntimeError):
+
+class SynthesisError(StuartError, RuntimeError):
     pass
 
 

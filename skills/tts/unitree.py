@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 from unitree_sdk2py.g1.audio.g1_audio_client import AudioClient
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import DaemonError, Done, Progress, StartupError
 from stuart_bt.skills import vendor

@@ -11,12 +11,12 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.suggest import did_you_mean
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Delivered
 from stuart_bt.perception.memory import Observation, SpatialMemory
-from stuart_bt.suggest import did_you_mean
-from stuart_bt.world import Pose
 
 from ..pick.dry import Position, load_objects, parse_objects
 from .backend import VisionBackend

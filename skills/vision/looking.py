@@ -13,14 +13,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon.backend import Activity, DaemonError, Delivered, Done, Progress
 from stuart_bt.perception.detect import Detector
 from stuart_bt.perception.frames import CameraError, CameraSource
 from stuart_bt.perception.memory import MemoryConfig, SpatialMemory
 from stuart_bt.perception.pipeline import Located, Perception
 from stuart_bt.perception.projection import CameraMount
-from stuart_bt.world import Pose
 
 from .backend import VisionBackend
 

@@ -13,14 +13,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon.backend import DaemonError
 from stuart_bt.perception.frames import CameraError
 from stuart_bt.perception.projection import CameraMount
 from stuart_bt.perception.sim_camera import DepthNoise, SimCamera, parse_resolution
 from stuart_bt.perception.sim_detector import SimDetector
 from stuart_bt.sim.world.client import WorldClient, WorldError
-from stuart_bt.world import Pose
 
 from .looking import CameraVision
 

@@ -19,14 +19,14 @@ from typing import Any
 
 from unitree_sdk2py.idl.nav_msgs.msg.dds_ import Odometry_
 
-from stuart_bt.clock import Clock
+from stuart_bt.core.clock import Clock
+from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import StartupError
 from stuart_bt.perception.frames import CameraError
 from stuart_bt.perception.projection import CameraMount
 from stuart_bt.perception.sim_camera import parse_resolution
 from stuart_bt.skills import vendor
-from stuart_bt.world import Pose
 
 from .looking import LOOP_KEYS, CameraVision
 

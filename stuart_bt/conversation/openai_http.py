@@ -19,15 +19,16 @@ import urllib.request
 from collections.abc import Iterator, Mapping
 from typing import Any
 
-from ..mission.commands import Reply
+from ..core.errors import StuartError
 from .prompt import HISTORY_LIMIT, History, build_messages
+from .reply import Reply
 from .streaming import collect_timed
 from .tags import postprocess
 
 UNAVAILABLE = "Sorry, I can't think of an answer right now."
 
 
-class ServerError(RuntimeError):
+class ServerError(StuartError, RuntimeError):
     """The server could not be reached or answered with an error."""
 
 

@@ -1,6 +1,6 @@
 """Gesture tags in a model's reply: ``"Hello! [wave]"`` -> ("Hello!", ["high wave"]).
 
-A reply may carry tags naming gestures of :mod:`stuart_bt.gestures` (any accepted spelling or
+A reply may carry tags naming gestures of :mod:`stuart_bt.core.gestures` (any accepted spelling or
 alias: ``[wave]``, ``[high_five]``, ``[Shake Hands]``). The spoken text never contains tags;
 unknown tags are dropped. The gestures are *kept only when the exchange is social*: a robot that
 waves while explaining where the bathroom is looks odd, and small models add tags everywhere.
@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import re
 
-from ..gestures import lookup
+from ..core.gestures import lookup
 
 _TAG = re.compile(r"\[\s*([^\[\]\n]{1,40}?)\s*\]")
 _SPACE = re.compile(r"[ \t]+")

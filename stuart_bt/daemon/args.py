@@ -10,8 +10,8 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
-from ..suggest import did_you_mean
-from ..world import Pose
+from ..core.suggest import did_you_mean
+from ..core.world import Pose
 from .backend import DaemonError
 
 _MISSING: Any = object()

@@ -15,23 +15,22 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
-from ..clock import Clock
+from ..core.clock import Clock
+from ..core.errors import CodedError, StuartError
 
 
-class DaemonError(Exception):
+class DaemonError(CodedError):
     """A command failed with a protocol error code (see :data:`protocol.ERROR_CODES`)."""
 
     def __init__(
         self, code: str, reason: str, vendor_code: int | None = None, data: dict[str, Any] | None = None
     ) -> None:
-        super().__init__(f"{code}: {reason}")
-        self.code = code
-        self.reason = reason
+        super().__init__(code, reason)
         self.vendor_code = vendor_code
         self.data = data
 
 
-class StartupError(Exception):
+class StartupError(StuartError):
     """A backend cannot start for a reason the operator can fix (the robot's service does not
     answer, a wrong network interface): the daemon prints this one message, no traceback."""
 

@@ -17,7 +17,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..events import EventStream
+from ..core.events import EventStream
 from . import protocol as p
 from .limits import BadLineLimiter
 

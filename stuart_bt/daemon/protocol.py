@@ -11,7 +11,8 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
-from ..jsonfile import is_finite_number, nesting_depth, to_json
+from ..core.errors import StuartError
+from ..core.jsonfile import is_finite_number, nesting_depth, to_json
 
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
@@ -61,7 +62,7 @@ FRAMEWORK_CODES = ("daemon_died", "daemon_hung", "daemon_faulty", "daemon_down")
 LOG_LEVELS = ("debug", "info", "warning", "error")
 
 
-class ProtocolError(ValueError):
+class ProtocolError(StuartError, ValueError):
     """A line that is not a protocol message. ``request_id`` is set when the line had one."""
 
     def __init__(self, reason: str, request_id: str | None = None) -> None:
@@ -113,7 +114,7 @@ def _text(line: bytes | str) -> str:
 
 
 def _check_depth(text: str) -> None:
-    """Refuse nesting deeper than :data:`MAX_DEPTH` without recursion (stuart_bt.jsonfile)."""
+    """Refuse nesting deeper than :data:`MAX_DEPTH` without recursion (stuart_bt.core.jsonfile)."""
     if nesting_depth(text, MAX_DEPTH) > MAX_DEPTH:
         raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
 

@@ -31,10 +31,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..catalogue import FAMILIES
-from ..clock import Clock
-from ..events import EventStream
-from ..suggest import did_you_mean
+from ..core.catalogue import FAMILIES
+from ..core.clock import Clock
+from ..core.errors import StuartError
+from ..core.events import EventStream
+from ..core.suggest import did_you_mean
 from .client import DaemonClient, Request
 
 EXIT_WAIT = 0.2  # seconds to wait for the exit status after a daemon closed its output
@@ -42,7 +43,7 @@ KILL_WAIT = 0.5  # seconds between SIGTERM and SIGKILL at shutdown
 STDERR_TAIL_LINES = 8
 
 
-class DaemonStartError(RuntimeError):
+class DaemonStartError(StuartError, RuntimeError):
     """A daemon did not come up; the message names it and quotes the end of its stderr."""
 
 

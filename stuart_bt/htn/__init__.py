@@ -1,6 +1,7 @@
 """HTN planning for Stuart: a YAML task domain, a backtracking planner, plans explained in words.
 
-    from stuart_bt.htn import Planner, explain, project_domain
+    from stuart_bt.htn import Planner, explain
+    from stuart_bt.tasks import project_domain
     from stuart_bt.htn.state import lab_world
 
     domain = project_domain()                      # tasks/domain.yaml + tasks/hooks.py
@@ -20,7 +21,6 @@ from .domain import (
     load_domain,
     load_domain_text,
     parse_task_text,
-    project_domain,
 )
 from .explain import explain, render_tree
 from .hooks import Hook, HookRegistry
@@ -31,6 +31,6 @@ from .state import State, lab_world
 __all__ = [
     "Domain", "DomainLoadError", "Failure", "Hook", "HookRegistry", "MethodAttempt", "Plan", "PlanStats", "Planner",
     "PlanningBudgetExceeded", "PlanningFailed", "State", "TaskArgumentError", "TaskCall", "TaskNode",
-    "lab_world", "load_domain", "load_domain_text", "parse_task_text", "project_domain",
+    "lab_world", "load_domain", "load_domain_text", "parse_task_text",
     "explain", "render_tree",
 ]

@@ -3,11 +3,11 @@
 A domain file (see docs/htn.md) declares
 
 - ``state``: the state variables expressions may read, with defaults;
-- ``primitives``: tasks bound to one skill of :mod:`stuart_bt.catalogue`, with skill arguments,
+- ``primitives``: tasks bound to one skill of :mod:`stuart_bt.core.catalogue`, with skill arguments,
   preconditions and effects on the symbolic state;
 - ``tasks``: compound tasks with ordered methods, each a precondition and ordered subtasks.
 
-Expressions are :mod:`stuart_bt.expr` expressions (safe, never ``eval``'d) whose names are the
+Expressions are :mod:`stuart_bt.core.expr` expressions (safe, never ``eval``'d) whose names are the
 task's parameters, loop variables and state variables. One extension: an index may be a name,
 ``objects[obj]``: the index is evaluated first and put into the expression as a constant, which
 is what the expression language accepts. Everything is checked when the file is loaded (unknown
@@ -23,20 +23,19 @@ import json
 import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from functools import lru_cache
-from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
-from .. import expr as bbexpr
-from ..catalogue import LEAVES, SKILLS  # primitives bind to skill leaves (daemon leaves, wait, stop)
-from ..suggest import did_you_mean
+from ..core import expr as bbexpr
+from ..core.catalogue import LEAVES, SKILLS  # primitives bind to skill leaves (daemon leaves, wait, stop)
+from ..core.errors import StuartError
+from ..core.suggest import did_you_mean
+from ..core.world import WorldState
 from ..tree import yaml_source as ys
 from ..tree.errors import ErrorLog, TreeLoadError
 from ..tree.spec import Location
-from ..world import WorldState
 from .hooks import Hook, HookRegistry
 from .state import State
 
@@ -69,7 +68,7 @@ class DomainLoadError(TreeLoadError):
     """The domain file could not be loaded; ``errors`` lists every problem, in reading order."""
 
 
-class TaskArgumentError(ValueError):
+class TaskArgumentError(StuartError, ValueError):
     """A task called with the wrong arguments, an unknown task, or task text that does not parse."""
 
 
@@ -156,7 +155,7 @@ class Expr:
         return self._names
 
     def evaluate(self, lookup: Lookup) -> Any:
-        """The value; raises :class:`stuart_bt.expr.ExprError` with a readable message."""
+        """The value; raises :class:`stuart_bt.core.expr.ExprError` with a readable message."""
         try:
             return self._expression(lookup).evaluate(lookup)
         except bbexpr.ExprError as e:
@@ -811,18 +810,6 @@ def load_domain(path: str | Path, hooks: HookRegistry | None = None) -> Domain:
 
 def load_domain_text(text: str, file: str = "<domain>", hooks: HookRegistry | None = None) -> Domain:
     return _Loader(file, hooks or HookRegistry()).load(ys.read_text(text, file))
-
-
-PROJECT_DOMAIN = "domain.yaml"
-
-
-@lru_cache(maxsize=1)
-def project_domain() -> Domain:
-    """tasks/domain.yaml with the project's hooks (tasks/hooks.py), loaded once per process."""
-    from stuart_bt.tasks.hooks import HOOKS  # the project's own hooks, named by its domain file
-
-    path = files("stuart_bt.tasks").joinpath(PROJECT_DOMAIN)
-    return load_domain(Path(str(path)), HOOKS)
 
 
 class _Loader:

@@ -18,6 +18,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from ..core.errors import StuartError
 from .domain import ClauseFailure, format_value
 from .state import State, jsonable
 
@@ -269,7 +270,7 @@ def tree_to_dict(root: TaskNode) -> dict[str, Any]:
     return {"tasks": [c.call for c in root.children], "steps": steps, "nodes": nodes}
 
 
-class PlanningFailed(Exception):
+class PlanningFailed(StuartError):
     """No plan exists for the tasks from the start state. ``failure`` says why (nested), ``root``
     is the task tree as far as the search got when it gave up."""
 
@@ -279,17 +280,14 @@ class PlanningFailed(Exception):
         self.stats = stats
         tasks = ", ".join(c.call for c in root.children)
         super().__init__(f"no plan for {tasks}:\n" + "\n".join("  " + line for line in failure.lines()))
-
-    @property
-    def reason(self) -> str:
-        return str(self.failure)
+        self.reason = str(failure)  # the failure alone; str(self) adds the tasks asked for
 
     def to_dict(self) -> dict[str, Any]:
         return {"ok": False, "reason": self.failure.headline(), "failure": self.failure.to_dict(),
                 **tree_to_dict(self.root), "stats": self.stats.to_dict()}
 
 
-class PlanningBudgetExceeded(Exception):
+class PlanningBudgetExceeded(StuartError):
     """The search ran out of its time or expansion budget; the attributes say how far it got."""
 
     def __init__(self, limit: str, budget: float, stats: PlanStats, steps: int, current: str) -> None:

@@ -26,7 +26,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ..expr import ExprError
+from ..core.expr import ExprError
 from .domain import (
     MISSING,
     CallTemplate,

@@ -6,7 +6,7 @@ attributes (``state.objects``). Values are treated as immutable: an effect repla
 value (a key effect ``objects[obj]`` copies the mapping first), so the planner can undo effects
 by putting old values back and a state handed out is never changed behind the caller's back.
 
-The start state comes from the executor's :class:`~stuart_bt.world.WorldState` (pose, held
+The start state comes from the executor's :class:`~stuart_bt.core.world.WorldState` (pose, held
 object, known objects, markers, last marker) via :meth:`State.from_world`; variables the world
 does not know (``visited``, ``speaker_at``, domain settings) come from the domain's declared
 defaults (:meth:`stuart_bt.htn.domain.Domain.initial_state`).
@@ -20,14 +20,15 @@ from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
-from ..jsonfile import read_json
-from ..world import KnownObject, Pose, WorldState, load_markers
+from ..core.errors import StuartError
+from ..core.jsonfile import read_json
+from ..core.world import KnownObject, Pose, WorldState, load_markers
 
 ARRIVAL_TOLERANCE = 0.5  # metres: within this of a marker the robot counts as being there (thesis)
 START_MARKER = "entrance"
 
 
-class StateFileError(ValueError):
+class StateFileError(StuartError, ValueError):
     """A start-state file that cannot be read; the message names the file."""
 
 

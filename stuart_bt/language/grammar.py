@@ -250,7 +250,7 @@ SURFACES = frozenset({"table", "counter", "shelf", "desk", "floor", "ground", "c
                       "bookshelf", "bookcase", "cart", "trolley", "container", "crate", "pocket", "holder",
                       "countertop", "tabletop", "surface", "pedestal", "stool", "mat", "rug", "carpet"})
 
-# gesture phrases -> the gesture library's canonical name (stuart_bt.gestures), except that every
+# gesture phrases -> the gesture library's canonical name (stuart_bt.core.gestures), except that every
 # waving request is "wave" (the library plays it as "high wave"): the name people say.
 _GESTURE_FORMS: dict[str, tuple[str, ...]] = {
     "high five": ("high five", "hi five", "high 5", "hi 5", "high fives", "five", "hi fives"),

@@ -24,7 +24,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..jsonfile import to_json
+from ..core.jsonfile import to_json
 
 NAVIGATE, MOVE, TURN, TURN_AROUND = "navigate_to_marker", "move_relative", "turn_by_angle", "turn_around"
 PICK, GESTURE, STOP, FIND = "pick_up", "gesture", "stop", "find"

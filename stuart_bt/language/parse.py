@@ -21,7 +21,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..jsonfile import to_json
+from ..core.jsonfile import to_json
 from .grammar import Defaults, Grammar
 from .intents import TaskIntent
 from .wake import GREETINGS, WakeFilter

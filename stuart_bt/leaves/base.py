@@ -23,10 +23,10 @@ from typing import Any, Protocol
 import py_trees
 from py_trees.common import Status
 
-from ..blackboard import Blackboard
-from ..catalogue import LEAVES, LeafSpec
-from ..clock import Clock
-from ..events import EventStream
+from ..core.blackboard import Blackboard
+from ..core.catalogue import LEAVES, LeafSpec
+from ..core.clock import Clock
+from ..core.events import EventStream
 from ..tree.spec import NodeSpec
 
 

@@ -7,8 +7,8 @@ from typing import Any
 
 from py_trees.common import Status
 
-from .. import expr
-from ..blackboard import render_template
+from ..core import expr
+from ..core.blackboard import render_template
 from ..tree.spec import NodeSpec
 from .base import DaemonRequest, Leaf, LeafFailure, RunContext
 

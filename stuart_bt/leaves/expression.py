@@ -10,8 +10,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from .. import gestures
-from ..suggest import did_you_mean
+from ..core import gestures
+from ..core.suggest import did_you_mean
 from ..tree.include_params import base_dir_of
 from ..tree.spec import NodeSpec
 from .base import LeafFailure, RunContext, SkillLeaf

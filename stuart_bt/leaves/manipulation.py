@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..world import KnownObject
+from ..core.world import KnownObject
 from .base import LeafFailure, SkillLeaf
 
 

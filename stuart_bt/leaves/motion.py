@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..suggest import did_you_mean
-from ..world import Pose
+from ..core.suggest import did_you_mean
+from ..core.world import Pose
 from .base import LeafFailure, SkillLeaf
 
 

@@ -23,7 +23,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..catalogue import LEAVES
+from ..core.catalogue import LEAVES
 from ..htn.plan import Plan, TaskNode
 from ..tree.spec import Location, NodeSpec, TreeSpec
 

@@ -1,9 +1,9 @@
 """The mission executor: a long-running robot that takes utterances and runs missions one by one.
 
 One :class:`MissionExecutor` owns one set of skill daemons (and, on the sim backend, the MuJoCo
-world) for its whole life, through a :class:`~stuart_bt.runner.Session`; each mission is planned
+world) for its whole life, through a :class:`~stuart_bt.run.session.Session`; each mission is planned
 from the world state *when it starts*, compiled (:mod:`.compiler`) and ticked by its own
-:class:`~stuart_bt.executor.Executor` on the session's clock, so daemons are never restarted
+:class:`~stuart_bt.run.executor.Executor` on the session's clock, so daemons are never restarted
 between missions.
 
 ``submit(utterance)`` is thread-safe (the ROS bridge and the web view call it from their own
@@ -39,15 +39,17 @@ from typing import Any, Self
 
 from py_trees.common import Status
 
-from ..executor import Executor, RunOutcome
-from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentError, TaskNode, project_domain
+from ..conversation.reply import Conversation
+from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentError, TaskNode
 from ..htn.domain import Domain, TaskCall
 from ..htn.state import lab_world
 from ..language import Parser, Resolver, TaskIntent
 from ..leaves import failure_code
-from ..runner import RunOptions, Session
+from ..run.executor import Executor, RunOutcome
+from ..run.session import RunOptions, Session
+from ..tasks import project_domain
 from ..tree.spec import Location, NodeSpec, TreeSpec
-from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, Conversation, interpret
+from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
 from .compiler import CompiledMission, compile_plan
 
 SESSION_HISTORY = 5000  # events a mission session keeps for its report: it may run all day
@@ -181,7 +183,7 @@ class MissionExecutor:
             self._worker.join(timeout=30)
         self._talk.shutdown(wait=False, cancel_futures=True)
         if self.options.report:
-            from ..report import write_report
+            from ..run.report import write_report
             write_report(self.report(), self.options.report)
         self.session.close()
 
@@ -387,7 +389,7 @@ class MissionExecutor:
         if not self.options.propose_tasks or proposals.is_question(text) or \
                 not isinstance(self.conversation, proposals.Proposer):
             return False
-        from ..gestures import LIBRARY
+        from ..core.gestures import LIBRARY
 
         prompt = proposals.messages(text, sorted(self.lab.markers), sorted(self.lab.objects), sorted(LIBRARY))
         try:

@@ -17,7 +17,7 @@ import re
 from collections.abc import Iterable, Sequence
 from typing import Any, Protocol, runtime_checkable
 
-from ..jsonfile import is_finite_number
+from ..core.jsonfile import is_finite_number
 from ..language import TaskIntent
 from ..language.intents import ACTIONS
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..world import WorldState
+from ..core.world import WorldState
 
 RECENT = 60.0  # s: older sightings are memories, not what the robot sees now
 NEAR_MARKER = 1.5  # m

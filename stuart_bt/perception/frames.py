@@ -13,7 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ..world import Pose
+from ..core.errors import StuartError
+from ..core.world import Pose
 
 
 @dataclass(frozen=True)
@@ -77,5 +78,5 @@ class CameraSource(ABC):
         self.close()
 
 
-class CameraError(RuntimeError):
+class CameraError(StuartError, RuntimeError):
     """A camera that cannot give frames (missing device, file, driver): one clear sentence."""

@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..clock import Clock
+from ..core.clock import Clock
 
 FORMAT = "stuart_bt.memory/1"
 

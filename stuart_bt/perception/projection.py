@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.world import Pose
 from ..sim.robot import description as desc
-from ..world import Pose
 from .frames import Intrinsics
 
 TORSO_HEIGHT = desc.PELVIS_HEIGHT + desc.WAIST_HEIGHT  # torso_link above the floor, standing, waist at zero

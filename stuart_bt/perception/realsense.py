@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..world import Pose
+from ..core.world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
 
 

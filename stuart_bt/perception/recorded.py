@@ -21,8 +21,8 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from ..jsonfile import to_json
-from ..world import Pose
+from ..core.jsonfile import to_json
+from ..core.world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
 
 DEPTH_SCALE = 0.001  # metres per depth unit (the RealSense default: millimetres)

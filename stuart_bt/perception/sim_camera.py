@@ -17,7 +17,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from ..world import Pose
+from ..core.world import Pose
 from .frames import CameraError, CameraSource, Frame, Intrinsics
 
 RESOLUTIONS = {"424x240": (424, 240), "640x480": (640, 480)}  # the D435's usual modes
@@ -51,7 +51,7 @@ class DepthNoise:
 
 def parse_resolution(text: str) -> tuple[int, int]:
     if text not in RESOLUTIONS:
-        from ..suggest import did_you_mean
+        from ..core.suggest import did_you_mean
 
         raise ValueError(f"unknown resolution {text!r}{did_you_mean(text, RESOLUTIONS)}; "
                          f"valid: {', '.join(RESOLUTIONS)}")

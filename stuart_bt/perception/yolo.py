@@ -13,6 +13,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from ..core.errors import StuartError
 from .detect import DEFAULT_THRESHOLD, Detection, Detector
 from .frames import Frame
 
@@ -20,7 +21,7 @@ INPUT_SIZE = 640
 NMS_IOU = 0.45
 
 
-class DetectorConfigError(ValueError):
+class DetectorConfigError(StuartError, ValueError):
     pass
 
 

@@ -30,8 +30,8 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy  # noqa: E
 from rclpy.signals import SignalHandlerOptions  # noqa: E402
 from std_msgs.msg import String  # noqa: E402
 
-from ..events import Event  # noqa: E402
-from ..snapshot import TreeSnapshot  # noqa: E402
+from ..core.events import Event  # noqa: E402
+from ..run.snapshot import TreeSnapshot  # noqa: E402
 from . import topics as t  # noqa: E402
 
 try:  # markers need visualization_msgs (in the ros extra); without it they are not published

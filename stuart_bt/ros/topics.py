@@ -1,6 +1,6 @@
 """What the bridge publishes, decided from events alone (no rclpy here, so it is testable anywhere).
 
-:class:`EventTranslator` reads one :class:`~stuart_bt.events.Event` at a time and says which
+:class:`EventTranslator` reads one :class:`~stuart_bt.core.events.Event` at a time and says which
 messages it makes, as :class:`Outgoing` values (a topic key and a plain payload); the node turns
 them into ROS messages on the ROS thread. Topic names are relative, so ``--namespace`` prefixes
 them all. The message formats are documented in docs/ros.md.
@@ -11,8 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..events import Event
-from ..jsonfile import to_json
+from ..core.events import Event
+from ..core.jsonfile import to_json
 
 # topic key -> relative topic name (the original system's names; docs/ros.md)
 AUDIO_IN = "audio_msg"  # raw speech-recogniser text: the wake filter applies

@@ -16,17 +16,18 @@ import py_trees
 from py_trees.behaviour import Behaviour
 from py_trees.common import OneShotPolicy, ParallelPolicy
 
-from .. import expr
-from ..blackboard import Blackboard
-from ..catalogue import COMPOSITES, DECORATORS
-from ..clock import Clock
+from ..core import expr
+from ..core.blackboard import Blackboard
+from ..core.catalogue import COMPOSITES, DECORATORS
+from ..core.clock import Clock
+from ..core.errors import StuartError
 from .decorators import Delay, Guard, Timeout
 from .spec import NodeSpec, TreeSpec
 
 LeafFactory = Callable[[NodeSpec], Behaviour]
 
 
-class BuildError(ValueError):
+class BuildError(StuartError, ValueError):
     """An option that could only be resolved at build time (a ``$key`` reference) is unusable."""
 
 

@@ -14,8 +14,8 @@ from typing import Any
 from py_trees import behaviour, decorators
 from py_trees.common import Status
 
-from ..clock import Clock
-from ..expr import ExprError, Expression
+from ..core.clock import Clock
+from ..core.expr import ExprError, Expression
 
 
 class _ReasonedDecorator(decorators.Decorator):

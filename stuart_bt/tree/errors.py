@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..core.errors import StuartError
 from .spec import Location
 
 
@@ -25,7 +26,7 @@ class TreeError:
         return f"{self.location}: {text}" if self.location else text
 
 
-class TreeLoadError(Exception):
+class TreeLoadError(StuartError):
     """The tree could not be loaded; ``errors`` lists every problem found, in reading order."""
 
     def __init__(self, errors: list[TreeError]) -> None:

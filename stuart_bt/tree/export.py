@@ -15,7 +15,7 @@ from typing import Any
 
 import yaml
 
-from ..catalogue import COMPOSITES, DECORATORS, LEAVES
+from ..core.catalogue import COMPOSITES, DECORATORS, LEAVES
 from .include_params import base_dir_of
 from .naming import child_segments
 from .spec import NodeSpec, TreeSpec

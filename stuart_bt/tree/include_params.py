@@ -19,9 +19,9 @@ from typing import Any
 
 from yaml.nodes import MappingNode, Node, ScalarNode
 
-from ..blackboard import REF, TEMPLATE
-from ..catalogue import PARAM_TYPES
-from ..suggest import did_you_mean
+from ..core.blackboard import REF, TEMPLATE
+from ..core.catalogue import PARAM_TYPES
+from ..core.suggest import did_you_mean
 from .errors import ErrorLog
 from .values import check_value
 from .yaml_source import BadValue, location, named_items, to_python

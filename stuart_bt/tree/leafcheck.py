@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Collection
 
-from ..catalogue import LeafSpec
+from ..core.catalogue import LeafSpec
 
 
 def alternatives(leaf: LeafSpec) -> str:

@@ -9,8 +9,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..suggest import did_you_mean
-from ..world import MarkerFileError, load_markers
+from ..core.suggest import did_you_mean
+from ..core.world import MarkerFileError, load_markers
 from .errors import ErrorLog, TreeError, TreeLoadError
 from .include_params import Scope, base_dir_of, defaults
 from .nodes import NodeReader

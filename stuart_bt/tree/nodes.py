@@ -15,9 +15,9 @@ from pathlib import Path
 
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
-from ..blackboard import is_reference, template_names
-from ..catalogue import COMPOSITES, DECORATORS, LEAVES, NodeKind, Param
-from ..suggest import did_you_mean
+from ..core.blackboard import is_reference, template_names
+from ..core.catalogue import COMPOSITES, DECORATORS, LEAVES, NodeKind, Param
+from ..core.suggest import did_you_mean
 from .errors import ErrorLog
 from .include_params import Scope, Val, base_dir_of, bind
 from .leafcheck import missing_or_conflicting

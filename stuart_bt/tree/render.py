@@ -14,7 +14,8 @@ import shutil
 import subprocess
 from typing import Any
 
-from ..catalogue import COMPOSITES, DECORATORS
+from ..core.catalogue import COMPOSITES, DECORATORS
+from ..core.errors import StuartError
 from .export import to_yaml
 from .spec import NodeSpec, TreeSpec
 
@@ -34,7 +35,7 @@ MAX_VALUE = 40
 WIDE = 2.0  # leaves per level of depth above which a picture is laid out left to right
 
 
-class RenderError(RuntimeError):
+class RenderError(StuartError, RuntimeError):
     """A drawing could not be made (unknown format, Graphviz missing or failing)."""
 
 

@@ -16,8 +16,8 @@ import re
 from pathlib import Path
 from typing import Any
 
-from .. import gestures
-from ..catalogue import COMPOSITES, DECORATORS, LEAVES, PARAM_TYPES, LeafSpec, NodeKind, Param
+from ..core import gestures
+from ..core.catalogue import COMPOSITES, DECORATORS, LEAVES, PARAM_TYPES, LeafSpec, NodeKind, Param
 from .include_params import DECLARATION_KEYS
 from .treefile import VERSION
 

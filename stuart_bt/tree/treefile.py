@@ -13,7 +13,7 @@ from typing import Any
 
 from yaml.nodes import MappingNode, Node, ScalarNode
 
-from ..suggest import did_you_mean
+from ..core.suggest import did_you_mean
 from .errors import ErrorLog
 from .include_params import Declared, Scope, base_dir_of, read_declarations
 from .spec import Location

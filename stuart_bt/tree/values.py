@@ -16,9 +16,9 @@ from typing import Any
 
 from yaml.nodes import Node, ScalarNode, SequenceNode
 
-from .. import expr, gestures
-from ..blackboard import is_reference, template_names
-from ..suggest import did_you_mean
+from ..core import expr, gestures
+from ..core.blackboard import is_reference, template_names
+from ..core.suggest import did_you_mean
 from .spec import Location
 from .yaml_source import location
 

@@ -17,7 +17,7 @@ import yaml
 from yaml.constructor import ConstructorError, SafeConstructor
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
-from ..jsonfile import NotARegularFile, read_limited
+from ..core.jsonfile import NotARegularFile, read_limited
 from .errors import ErrorLog, TreeError
 from .spec import Location
 

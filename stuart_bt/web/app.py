@@ -37,8 +37,8 @@ from starlette.staticfiles import StaticFiles
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
-from ..jsonfile import is_finite_number, nesting_depth
-from ..world import load_markers
+from ..core.jsonfile import is_finite_number, nesting_depth
+from ..core.world import load_markers
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
 from .hub import EventHub

@@ -1,7 +1,7 @@
 """What the buttons do: the web view's commands, through the public run and mission APIs only.
 
 Two kinds of robot sit behind the page. :class:`TreeControl` runs one tree file on a
-:class:`~stuart_bt.runner.Session` (the same daemons for the whole serve): run, stop, continue,
+:class:`~stuart_bt.run.session.Session` (the same daemons for the whole serve): run, stop, continue,
 and small trees of its own for "walk here", "go to marker" and "play this gesture".
 :class:`MissionControl` wraps a :class:`~stuart_bt.mission.executor.MissionExecutor`: what is
 typed in the console is submitted as an utterance; stop and continue are said, as a person would.
@@ -18,16 +18,17 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ..events import Event, EventStream
-from ..runner import RunOptions, Session
+from ..core.errors import StuartError
+from ..core.events import Event, EventStream
+from ..core.world import Marker
+from ..run.session import RunOptions, Session
 from ..tree.spec import Location, NodeSpec, TreeSpec
-from ..world import Marker
 
 WAKE = "Hey Stuart"
 IDLE_STEP = 0.05  # sim seconds the idle world advances per step (so the arms follow the sliders)
 
 
-class ControlError(Exception):
+class ControlError(StuartError):
     """A command that cannot be done now (busy, not on this backend); the message says why."""
 
 

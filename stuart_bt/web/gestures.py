@@ -14,12 +14,13 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-from ..gesture_cli import GROUPS, joint_limits
+from ..core.errors import StuartError
+from ..skills.gesture.keyframes import JOINT_GROUPS, joint_limits
 
 FILE_NAME = re.compile(r"[a-z0-9][a-z0-9_\-]{0,39}")  # used with fullmatch: "$" would let a trailing newline in
 
 
-class GestureDeskError(ValueError):
+class GestureDeskError(StuartError, ValueError):
     """A request the recorder refuses; ``problems`` lists every reason."""
 
     def __init__(self, problems: list[str]) -> None:
@@ -35,7 +36,7 @@ def joint_table() -> list[dict[str, Any]]:
     limits = joint_limits()
     rows = []
     for name, (lo, hi) in limits.items():
-        group = next(g for g, prefix, hand in reversed(GROUPS)
+        group = next(g for g, prefix, hand in reversed(JOINT_GROUPS)
                      if name.startswith(prefix) and hand == ("_hand_" in name))
         rows.append({"name": name, "group": group, "lower": lo, "upper": hi,
                      "neutral": float(NEUTRAL.get(name, min(max(0.0, lo), hi)))})
@@ -76,8 +77,8 @@ class GestureFolder:
             raise GestureDeskError(e.problems) from None
 
     def load(self, name: str) -> dict[str, Any]:
+        from ..core.suggest import did_you_mean
         from ..skills.gesture.keyframes import GestureFileError, load_gesture_file
-        from ..suggest import did_you_mean
 
         path = self.path_for(name)
         if not path.exists():

@@ -21,9 +21,9 @@ from collections import deque
 from collections.abc import Iterable
 from typing import Any
 
-from ..events import Event, EventStream, _json_default
-from ..jsonfile import to_json
-from ..snapshot import TreeSnapshot
+from ..core.events import Event, EventStream, _json_default
+from ..core.jsonfile import to_json
+from ..run.snapshot import TreeSnapshot
 
 FLUSH_EVERY = 0.015  # seconds between two pushes to the browsers
 HISTORY = 50_000  # events a late browser receives (the tour has ~3000 status changes)

@@ -25,15 +25,16 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..jsonfile import to_json
-from ..suggest import did_you_mean
+from ..core.errors import StuartError
+from ..core.jsonfile import to_json
+from ..core.suggest import did_you_mean
 
 NAME_RULE = re.compile(r"[a-z][a-z0-9_]{0,39}")  # used with fullmatch: "$" would let a trailing newline in
 DISPLAY_MAX = 60
 OPS = ("add", "update", "rename", "delete")
 
 
-class MarkerEditError(ValueError):
+class MarkerEditError(StuartError, ValueError):
     """An edit that cannot be applied; the message says why (and the closest valid name)."""
 
 

@@ -1,5 +1,5 @@
 // The page's copy of what happened: every event since the server started (or the saved log),
-// folded exactly as stuart_bt/snapshot.py folds them (tree -> nodes, status -> node status,
+// folded exactly as stuart_bt/run/snapshot.py folds them (tree -> nodes, status -> node status,
 // leaf -> last result, blackboard -> table), plus the segments the timeline scrubs through.
 //
 // A segment is one built tree and the events after it, up to the next tree that is not a

@@ -30,12 +30,12 @@ import time
 from collections.abc import Callable
 from typing import Any, TextIO
 
-from ..events import Event
-from ..executor import RunOutcome
+from ..core.events import Event
+from ..mission.executor import Mission, MissionExecutor, MissionOptions
+from ..run.executor import RunOutcome
 from ..tree.render import render
 from ..tree.spec import NodeSpec, TreeSpec
-from .cli import add_llm_arguments, llm_options
-from .executor import Mission, MissionExecutor, MissionOptions
+from .mission import add_llm_arguments, llm_options
 
 EXIT_OK, EXIT_FAILED, EXIT_INTERRUPTED = 0, 1, 130
 EOF_WAIT = 600.0  # wall seconds to let the missions asked for finish after the input ends
@@ -252,7 +252,7 @@ def _tasks(m: Mission) -> str:
     return ", ".join(str(c) for c in m.calls)
 
 
-def add_chat_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt chat`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "chat", help="talk to the robot: one utterance per stdin line, events printed as they happen",
@@ -352,7 +352,7 @@ def _interrupt_handlers() -> dict[int, Any]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m stuart_bt.mission.chat``: the same command without the stuart-bt wrapper."""
+    """``python -m stuart_bt.cli.chat``: the same command without the stuart-bt wrapper."""
     parser = argparse.ArgumentParser(prog="stuart-bt chat", description=__doc__.split("\n\n")[0])
     _arguments(parser)
     return cmd_chat(parser.parse_args(argv))

@@ -13,12 +13,12 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .executor import MissionExecutor, MissionOptions
+from ..mission.executor import MissionExecutor, MissionOptions
 
 SPOKEN_CMDS = ("say",)
 
 
-def add_mission_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt mission`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "mission", help="run an utterance end to end: parse, plan, compile, run (queue/stop/continue with --then)",

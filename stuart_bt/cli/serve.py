@@ -17,7 +17,7 @@ from typing import Any
 EXIT_OK, EXIT_FAILED = 0, 1
 
 
-def add_serve_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt serve`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "serve", help="the live web view: tree, mission console, map, gesture recorder",
@@ -48,7 +48,7 @@ def add_serve_command(subparsers: Any) -> argparse.ArgumentParser:
 
 
 def cmd_serve(args: argparse.Namespace) -> int:
-    from ..cli import UserError
+    from .main import UserError
 
     modes = sum(bool(m) for m in (args.file, args.mission, args.replay))
     if modes != 1:
@@ -67,12 +67,12 @@ def cmd_serve(args: argparse.Namespace) -> int:
 def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
     import uvicorn
 
-    from ..world import load_markers
-    from .app import WebParts, create_app
-    from .gestures import GestureFolder
-    from .mapfile import MapFile, default_map
-    from .markers import MarkerStore
-    from .security import Guard
+    from ..core.world import load_markers
+    from ..web.app import WebParts, create_app
+    from ..web.gestures import GestureFolder
+    from ..web.mapfile import MapFile, default_map
+    from ..web.markers import MarkerStore
+    from ..web.security import Guard
 
     guard = Guard.for_host(args.host, listener.getsockname()[1], tuple(args.allow_host))
     control, hub, markers_file, what = _robot(args)
@@ -106,13 +106,13 @@ def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
 
 def _robot(args: argparse.Namespace) -> tuple[Any, Any, Path | None, str]:
     """(control, hub, marker file, description) for the chosen mode."""
-    from ..cli import UserError, _load
-    from .control import MissionControl, TreeControl
-    from .hub import EventHub
+    from ..web.control import MissionControl, TreeControl
+    from ..web.hub import EventHub
+    from .main import UserError, _load
 
     speed = args.speed if args.speed is not None else (1.0 if args.backend == "sim" else None)
     if args.replay:
-        from ..events import read_jsonl
+        from ..core.events import read_jsonl
 
         try:
             events = read_jsonl(args.replay)
@@ -134,7 +134,7 @@ def _robot(args: argparse.Namespace) -> tuple[Any, Any, Path | None, str]:
         info = {"mode": "mission", "backend": args.backend}
         return control, EventHub(control.events, info=info), Path(args.markers) if args.markers else \
             control.markers_file, f"the mission console ({args.backend})"
-    from ..runner import RunOptions
+    from ..run.session import RunOptions
 
     spec = _load(args.file, args.markers)
     options = RunOptions(backend=args.backend, rate=args.rate, speed=speed, start=args.start,
@@ -153,7 +153,7 @@ def _package_markers() -> Path:
 
 def _bind(host: str, port: int) -> socket.socket:
     """The listening socket, or one clear message (port in use, not an address of this machine)."""
-    from ..cli import UserError
+    from .main import UserError
 
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     sock = socket.socket(family, socket.SOCK_STREAM)

@@ -1,6 +1,6 @@
 """The world state the planner and the leaves share: pose, held object, known objects, markers.
 
-It lives on the blackboard under the key ``world`` (see :mod:`stuart_bt.blackboard`), so tree
+It lives on the blackboard under the key ``world`` (see :mod:`stuart_bt.core.blackboard`), so tree
 expressions can read it (``world.held == 'bottle'``) and every leaf updates it from its daemon's
 results (navigate -> pose, pick -> held). Units and frames follow REP-103: metres, radians, map
 frame x forward / y left, yaw counter-clockwise.
@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .errors import StuartError
 from .jsonfile import is_finite_number, read_json, to_json
 
 
@@ -45,7 +46,7 @@ class Pose:
         return cls(x - ahead * cos + left * sin, y - ahead * sin - left * cos, heading)
 
 
-class PoseError(ValueError):
+class PoseError(StuartError, ValueError):
     """Pose data that is not three finite numbers."""
 
 
@@ -113,7 +114,7 @@ class WorldState:
         }
 
 
-class MarkerFileError(ValueError):
+class MarkerFileError(StuartError, ValueError):
     pass
 
 

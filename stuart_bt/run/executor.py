@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 import py_trees
 from py_trees.common import Status
 
-from .clock import Clock
-from .events import EventStream
+from ..core.clock import Clock
+from ..core.events import EventStream
 
 Hook = Callable[[], None]
 FINISHED = (Status.SUCCESS, Status.FAILURE)

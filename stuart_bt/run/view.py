@@ -23,9 +23,9 @@ from rich.table import Table
 from rich.text import Text
 from rich.tree import Tree
 
-from .events import Event, EventStream
-from .tree.render import label
-from .tree.spec import NodeSpec, TreeSpec
+from ..core.events import Event, EventStream
+from ..tree.render import label
+from ..tree.spec import NodeSpec, TreeSpec
 
 STATUS_STYLE = {"SUCCESS": "green", "FAILURE": "bold red", "RUNNING": "bold yellow", "INVALID": "dim"}
 STATUS_MARK = {"SUCCESS": "✔", "FAILURE": "✘", "RUNNING": "▶", "INVALID": "·"}

@@ -16,20 +16,21 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from . import __version__
-from .gesture_cli import add_gesture_commands
+from .. import __version__
+from ..core.errors import StuartError
+from . import gesture
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
-class UserError(Exception):
+class UserError(StuartError):
     """A problem the user can fix; printed as one line without a traceback."""
 
 
 # -- commands ----------------------------------------------------------------------------------------
 def cmd_validate(args: argparse.Namespace) -> int:
-    from .tree.errors import TreeLoadError
-    from .tree.loader import load_tree
+    from ..tree.errors import TreeLoadError
+    from ..tree.loader import load_tree
 
     status = EXIT_OK
     for file in args.files:
@@ -46,7 +47,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_show(args: argparse.Namespace) -> int:
-    from .tree.render import render
+    from ..tree.render import render
 
     spec = _load(args.file, args.markers)
     fmt = args.format
@@ -55,7 +56,7 @@ def cmd_show(args: argparse.Namespace) -> int:
         if fmt not in SHOW_FORMATS:
             raise UserError(f"cannot tell the format from {args.output!r}; pass --format")
     if fmt == "yaml":  # paths inside must stay right from where the file is written
-        from .tree.export import to_yaml
+        from ..tree.export import to_yaml
 
         out: str | bytes = to_yaml(spec, Path(args.output).parent if args.output else Path.cwd())
     else:
@@ -77,8 +78,8 @@ def cmd_show(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .runner import RunOptions, Session
-    from .view import make_view
+    from ..run.session import RunOptions, Session
+    from ..run.view import make_view
 
     spec = _load(args.file, args.markers)
     if args.rate <= 0 or (args.speed is not None and args.speed < 0):
@@ -133,7 +134,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 def cmd_schema(args: argparse.Namespace) -> int:
     import json
 
-    from .tree.schema import tree_schema
+    from ..tree.schema import tree_schema
 
     text = json.dumps(tree_schema(), indent=2, ensure_ascii=False) + "\n"
     if args.output:
@@ -150,8 +151,8 @@ def _daemon_options(file: str | None) -> dict[str, dict[str, Any]]:
         return {}
     import yaml
 
-    from .catalogue import FAMILIES
-    from .suggest import did_you_mean
+    from ..core.catalogue import FAMILIES
+    from ..core.suggest import did_you_mean
 
     try:
         data = yaml.safe_load(Path(file).read_text(encoding="utf-8")) or {}
@@ -175,8 +176,8 @@ SHOW_FORMATS = ("unicode", "ascii", "dot", "svg", "png", "yaml")
 
 
 def _load(file: str, markers: str | None) -> Any:
-    from .tree.errors import TreeLoadError
-    from .tree.loader import load_tree
+    from ..tree.errors import TreeLoadError
+    from ..tree.loader import load_tree
 
     try:
         return load_tree(file, markers_file=markers)
@@ -185,17 +186,17 @@ def _load(file: str, markers: str | None) -> Any:
 
 
 # Commands whose modules take a noticeable time to import: defined in full only when chosen, so
-# validate, show and run start fast. name -> ("module:add_function", one-line summary)
+# validate, show and run start fast. name -> (module with add_command(subparsers), one-line summary)
 VOICE_COMMANDS = {
-    "parse": ("stuart_bt.language.cli:add_parse_command", "parse what was said into intents (JSON)"),
-    "plan": ("stuart_bt.mission.plan_cli:add_plan_command", "plan a task or an utterance with the HTN domain"),
-    "mission": ("stuart_bt.mission.cli:add_mission_command", "run an utterance end to end"),
-    "chat": ("stuart_bt.mission.chat:add_chat_command", "talk to the robot, one utterance per line"),
-    "ros": ("stuart_bt.ros.cli:add_ros_command", "a ROS 2 bridge node in front of the mission pipeline"),
-    "perceive": ("stuart_bt.perception.cli:add_perceive_command", "look once: detections, positions, a picture"),
-    "map": ("stuart_bt.map_cli:add_map_command",
+    "parse": ("stuart_bt.cli.parse", "parse what was said into intents (JSON)"),
+    "plan": ("stuart_bt.cli.plan", "plan a task or an utterance with the HTN domain"),
+    "mission": ("stuart_bt.cli.mission", "run an utterance end to end"),
+    "chat": ("stuart_bt.cli.chat", "talk to the robot, one utterance per line"),
+    "ros": ("stuart_bt.cli.ros", "a ROS 2 bridge node in front of the mission pipeline"),
+    "perceive": ("stuart_bt.cli.perceive", "look once: detections, positions, a picture"),
+    "map": ("stuart_bt.cli.map",
             "robot SLAM maps (unitree): start mapping, save, relocalise, pose, close"),
-    "serve": ("stuart_bt.web.cli:add_serve_command", "the live web view: tree, mission console, map, gestures"),
+    "serve": ("stuart_bt.cli.serve", "the live web view: tree, mission console, map, gestures"),
 }
 
 
@@ -245,11 +246,10 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
                    help="JSON or YAML: {family: {option: value}} for the daemons (docs/robot.md)")
     p.set_defaults(func=cmd_run)
 
-    add_gesture_commands(sub)
+    gesture.add_command(sub)
     for name, (where, summary) in VOICE_COMMANDS.items():
         if selected is None or selected == name:
-            module, adder = where.split(":")
-            getattr(importlib.import_module(module), adder)(sub)
+            importlib.import_module(where).add_command(sub)
         else:  # listed in the help; its module (grammar, planner, executor) loads only when chosen
             sub.add_parser(name, help=summary, add_help=False)
 
@@ -267,31 +267,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     func: Callable[[argparse.Namespace], int] = args.func
     try:
         return func(args)
-    except UserError as e:
-        print(f"stuart-bt: {e}" if "\n" not in str(e) else str(e), file=sys.stderr)
-        return EXIT_FAILED
     except KeyboardInterrupt:
         print("stuart-bt: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except BrokenPipeError:
         return EXIT_OK
+    except (StuartError, OSError, ValueError) as e:  # expected: the message is written for people
+        if args.debug and not isinstance(e, UserError):
+            raise
+        text = str(e)
+        print(text if "\n" in text else f"stuart-bt: {text}", file=sys.stderr)  # a list: one problem a line
+        return EXIT_FAILED
     except Exception as e:
         if args.debug:
             raise
-        known = _known_error(e)
-        if known:
-            print(f"stuart-bt: {known}", file=sys.stderr)
-            return EXIT_FAILED
         print(f"stuart-bt: internal error: {type(e).__name__}: {e} (run with --debug for details)", file=sys.stderr)
         return EXIT_FAILED
-
-
-def _known_error(e: Exception) -> str | None:
-    """Messages of the framework's own error types (and OS errors) are already user-facing."""
-    names = {"DaemonStartError", "MarkerFileError", "RenderError", "ProtocolError", "ExprError"}
-    if type(e).__name__ in names or isinstance(e, (OSError, ValueError)):
-        return str(e)
-    return None
 
 
 if __name__ == "__main__":

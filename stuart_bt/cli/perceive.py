@@ -17,17 +17,18 @@ import math
 import sys
 from typing import Any
 
-from ..jsonfile import to_json
+from ..core.errors import StuartError
+from ..core.jsonfile import to_json
 
 HELP = "look once: detections with torso and world positions, an annotated picture"
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
 
-class PerceiveError(Exception):
+class PerceiveError(StuartError):
     """Bad input or a camera that cannot start: one sentence, no traceback, exit 2."""
 
 
-def add_perceive_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p = subparsers.add_parser("perceive", help=HELP, description=__doc__.split("\n\n")[0])
     p.add_argument("--backend", choices=("sim", "recorded", "realsense"), default="sim")
     p.add_argument("--at", metavar="MARKER", help="sim: stand the robot at this marker (default: kitchen)")
@@ -58,12 +59,12 @@ def cmd_perceive(args: argparse.Namespace) -> int:
 
 
 def _perceive(args: argparse.Namespace) -> int:
-    from ..clock import ManualClock
-    from .frames import CameraError
-    from .memory import SpatialMemory
-    from .pipeline import Perception
-    from .projection import CameraMount
-    from .sim_camera import parse_resolution
+    from ..core.clock import ManualClock
+    from ..perception.frames import CameraError
+    from ..perception.memory import SpatialMemory
+    from ..perception.pipeline import Perception
+    from ..perception.projection import CameraMount
+    from ..perception.sim_camera import parse_resolution
 
     if args.frames < 1:
         raise PerceiveError(f"--frames must be at least 1, got {args.frames}")
@@ -95,12 +96,12 @@ def _perceive(args: argparse.Namespace) -> int:
             source.draw_map(args.map_out, memory.summary()["objects"])
     frame, located = frames[-1]
     if args.save_frames:
-        from .recorded import save_frame
+        from ..perception.recorded import save_frame
 
         for i, (f, _) in enumerate(frames):
             save_frame(args.save_frames, i, f)
     if args.output:
-        from .annotate import save_annotated
+        from ..perception.annotate import save_annotated
 
         save_annotated(frame.rgb, located, args.output)
     report = _report(frame, located, memory.summary(), truth)
@@ -114,7 +115,7 @@ def _perceive(args: argparse.Namespace) -> int:
 def _detector(args: argparse.Namespace) -> Any:
     kind = args.detector or ("yolo" if args.backend == "realsense" else "sim")
     if kind == "yolo":
-        from .yolo import DetectorConfigError, YoloDetector
+        from ..perception.yolo import DetectorConfigError, YoloDetector
 
         try:
             return YoloDetector(args.weights, threshold=args.threshold)
@@ -122,7 +123,7 @@ def _detector(args: argparse.Namespace) -> Any:
             raise PerceiveError(str(e)) from None
     if args.backend == "realsense":
         raise PerceiveError("the sim detector needs the simulator's segmentation; use --detector yolo on a RealSense")
-    from .sim_detector import SimDetector
+    from ..perception.sim_detector import SimDetector
 
     return SimDetector(args.threshold)
 
@@ -136,17 +137,17 @@ class _Source:
         self.camera: Any = None
 
     def __enter__(self) -> _Source:
-        from .frames import CameraError
+        from ..perception.frames import CameraError
 
         try:
             if self.args.backend == "sim":
                 self._start_sim()
             elif self.args.backend == "recorded":
-                from .recorded import RecordedFrames
+                from ..perception.recorded import RecordedFrames
 
                 self.camera = RecordedFrames(self.args.folder, loop=True)
             else:
-                from .realsense import RealSenseCamera
+                from ..perception.realsense import RealSenseCamera
 
                 self.camera = RealSenseCamera(self.width, self.height)
         except CameraError as e:
@@ -161,10 +162,10 @@ class _Source:
         import os
 
         os.environ.setdefault("MUJOCO_GL", "egl")
+        from ..core.suggest import did_you_mean
+        from ..perception.sim_camera import SimCamera
         from ..sim.world.client import WorldError, launch_world
         from ..sim.world.occupancy import load_markers
-        from ..suggest import did_you_mean
-        from .sim_camera import SimCamera
 
         markers = load_markers()
         at = self.args.at or "kitchen"
@@ -192,7 +193,7 @@ class _Source:
         self.camera = SimCamera(self.world.client(), self.width, self.height)
 
     def _stand(self, label: str, x: float, y: float) -> None:
-        from .centre import SHAPES
+        from ..perception.centre import SHAPES
 
         surface = self.world.call("surface", x=x, y=y)["z"]
         shape = SHAPES.get(label)

@@ -8,11 +8,11 @@ import argparse
 import sys
 from typing import Any
 
+from ..core.jsonfile import to_json
 from ..htn.explain import explain, steps_text
-from ..jsonfile import to_json
 
 
-def add_plan_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt plan TASK`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "plan", help="plan a task with the HTN domain; print the decomposition, methods chosen and rejections",
@@ -66,7 +66,8 @@ def cmd_plan(args: argparse.Namespace) -> int:
 
 
 def _domain(path: str | None) -> Any:
-    from ..htn.domain import load_domain, project_domain
+    from ..htn.domain import load_domain
+    from ..tasks import project_domain
     from ..tree.errors import TreeLoadError
 
     try:
@@ -135,7 +136,7 @@ def _print_plan(plan: Any, args: argparse.Namespace) -> None:
     print("\nsteps:")
     print(steps_text(steps))
     if args.show:
-        from .compiler import show
+        from ..mission.compiler import show
 
         print("\ntree:")
         print(show(plan, "ascii" if args.ascii else "unicode"))

@@ -22,6 +22,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from .errors import StuartError
+
 _CONSTANT_NAMES = {"true": True, "false": False, "null": None, "True": True, "False": False, "None": None}
 _FUNCTIONS: dict[str, Callable[..., Any]] = {"len": len, "abs": abs, "min": min, "max": max, "round": round}
 _BINARY = {
@@ -37,7 +39,7 @@ _COMPARE = {
 MAX_LENGTH = 1000
 
 
-class ExprError(ValueError):
+class ExprError(StuartError, ValueError):
     """A parse or evaluation problem; ``column`` is 1-based within the expression text."""
 
     def __init__(self, message: str, column: int = 1) -> None:

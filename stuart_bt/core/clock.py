@@ -116,14 +116,11 @@ class ManualClock:
 
 
 def clock_from_spec(spec: str | None) -> Clock:
-    """Build a clock from :meth:`Clock.spec` text (``None`` or ``wall`` gives real time)."""
+    """Build a clock from :meth:`Clock.spec` text (``None`` or ``wall`` gives real time). The
+    simulator's ``sim:PATH`` clock is built by the daemons' runtime, which knows the simulator."""
     if not spec or spec == "wall":
         return WallClock()
     kind, _, rest = spec.partition(":")
-    if kind == "sim":  # the simulator's clock, read from the world server's shared clock file
-        from .sim.world.clock import SimClock
-
-        return SimClock(rest, driver=False)
     if kind == "scaled":
         epoch_text, _, factor_text = rest.partition(":")
         try:

@@ -17,14 +17,14 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from ..cli import _daemon_options
-from ..mission.cli import add_llm_arguments, llm_options
+from .main import _daemon_options
+from .mission import add_llm_arguments, llm_options
 
 EXIT_OK, EXIT_FAILED = 0, 1
 MAX_DOMAIN_ID = 232  # the highest ROS 2 domain id whose DDS ports fit (ROS 2 docs, "domain ID")
 
 
-def add_ros_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt ros`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "ros", help="a ROS 2 bridge node: /audio_msg in, /llm/task_intent, /llm/response, /bt/status out",
@@ -52,7 +52,7 @@ def cmd_ros(args: argparse.Namespace) -> int:
         print(f"stuart-bt: {problem}", file=sys.stderr)
         return EXIT_FAILED
     from ..mission.executor import MissionExecutor, MissionOptions
-    from .node import Bridge  # rclpy loads here, and only in this process
+    from ..ros.node import Bridge  # rclpy loads here, and only in this process
 
     daemon_options = _daemon_options(args.daemon_options)  # a bad file: one line (UserError), nothing started
     if args.confirm_picks:
@@ -92,7 +92,7 @@ def _check(args: argparse.Namespace) -> str | None:
     domain = os.environ.get("ROS_DOMAIN_ID", "").strip()
     if domain and not (domain.isdigit() and int(domain) <= MAX_DOMAIN_ID):
         return f"ROS_DOMAIN_ID must be a whole number from 0 to {MAX_DOMAIN_ID}, not {domain!r}"
-    from .guard import forbid_vendor_sdk
+    from ..ros.guard import forbid_vendor_sdk
 
     forbid_vendor_sdk()  # before rclpy loads
     from rclpy.exceptions import InvalidNamespaceException
@@ -118,7 +118,7 @@ def _namespace(ns: str) -> str:
 
 def _announce(bridge: Any, robot: Any) -> None:
     """One line that says the bridge is up and where (tests and scripts wait for it)."""
-    from . import topics as t
+    from ..ros import topics as t
 
     supervisor = robot.session.supervisor
     daemons = ", ".join(f"{f} {supervisor.pid(f)}" for f in supervisor.families) if supervisor else "none"

@@ -29,10 +29,10 @@ import threading
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from .events import Event, EventStream, _json_default
-from .jsonfile import to_json
-from .tree.render import category
-from .tree.spec import NodeSpec, TreeSpec
+from ..core.events import Event, EventStream, _json_default
+from ..core.jsonfile import to_json
+from ..tree.render import category
+from ..tree.spec import NodeSpec, TreeSpec
 
 FORMAT = "stuart_bt.snapshot/1"
 

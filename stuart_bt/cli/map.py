@@ -18,7 +18,7 @@ import argparse
 import sys
 from typing import Any
 
-from .jsonfile import to_json
+from ..core.jsonfile import to_json
 
 ACTIONS = {  # action -> (loco daemon command, help)
     "start": ("map_start", "start mapping (then walk the robot around the space)"),
@@ -29,7 +29,7 @@ ACTIONS = {  # action -> (loco daemon command, help)
 }
 
 
-def add_map_command(sub: Any) -> None:
+def add_command(sub: Any) -> None:
     p = sub.add_parser("map", help="robot SLAM maps (unitree): start mapping, save, relocalise, pose, close",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("action", choices=tuple(ACTIONS), help="; ".join(f"{k}: {v[1]}" for k, v in ACTIONS.items()))
@@ -44,7 +44,7 @@ def add_map_command(sub: Any) -> None:
 
 def map_request(action: str, path: str | None, pose: str) -> dict[str, Any]:
     """The loco daemon's arguments for ``action``; a bad path or pose is a UserError."""
-    from .cli import UserError
+    from .main import UserError
 
     if action in ("save", "relocalise"):
         if not path:
@@ -66,10 +66,10 @@ def map_request(action: str, path: str | None, pose: str) -> dict[str, Any]:
 def cmd_map(args: argparse.Namespace) -> int:
     import tempfile
 
-    from .cli import EXIT_FAILED, EXIT_OK
-    from .clock import ScaledClock
-    from .daemon.supervisor import Supervisor
-    from .events import EventStream
+    from ..core.clock import ScaledClock
+    from ..core.events import EventStream
+    from ..daemon.supervisor import Supervisor
+    from .main import EXIT_FAILED, EXIT_OK
 
     request_args = map_request(args.action, args.path, args.pose)
     options: dict[str, Any] = {}

@@ -13,8 +13,8 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from .events import Event, EventRecorder, EventStream
-from .jsonfile import to_json
+from ..core.events import Event, EventRecorder, EventStream
+from ..core.jsonfile import to_json
 
 
 class ReportBuilder(EventRecorder):

@@ -20,18 +20,18 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..core.errors import StuartError
+
 if TYPE_CHECKING:
-    from .skills.gesture.backend import Keyframe
+    from ..skills.gesture.backend import Keyframe
 
 EXIT_OK, EXIT_FAILED = 0, 1
 ROUND = 5  # decimals gesture files keep (save_gesture_file rounds to these)
 DEGREE_SUFFIXES = ("deg", "°")
 NEUTRAL_WORD = "neutral"  # in a keyframe: every arm and hand joint back to the neutral pose
-GROUPS = (("left arm", "left_", False), ("right arm", "right_", False), ("left hand", "left_hand_", True),
-          ("right hand", "right_hand_", True), ("waist", "waist_", False))
 
 
-class Problems(Exception):
+class Problems(StuartError):
     """Everything wrong with a command's input; printed one per line, exit 1."""
 
     def __init__(self, problems: list[str]) -> None:
@@ -40,18 +40,9 @@ class Problems(Exception):
 
 
 # -- parsing keyframes from the command line ---------------------------------------------------------
-def joint_limits() -> dict[str, tuple[float, float]]:
-    """Limits of every joint a gesture may name (arms, hands, waist), from the robot description."""
-    from .sim.robot import description as desc
-    from .skills.gesture.keyframes import GESTURE_JOINTS
-
-    limits = desc.g1().limits()
-    return {name: limits[name] for name in GESTURE_JOINTS}
-
-
 def resolve_joint(name: str, known: Iterable[str]) -> tuple[str | None, str]:
     """(joint, "") for a known name or one missing only its ``_joint`` suffix; (None, hint) otherwise."""
-    from .suggest import did_you_mean
+    from ..core.suggest import did_you_mean
 
     known = tuple(known)
     if name in known:
@@ -80,7 +71,7 @@ def parse_keyframe(text: str, limits: Mapping[str, tuple[float, float]]) -> tupl
     reports every mistake in the keyframe; limits are checked here too, with the limit. The
     word ``neutral`` puts every arm and hand joint back to the neutral pose (tokens after it
     still apply), so a gesture can end where it started without 28 numbers."""
-    from .skills.gesture.keyframes import NEUTRAL
+    from ..skills.gesture.keyframes import NEUTRAL
 
     tokens = text.split()
     if not tokens:
@@ -138,8 +129,8 @@ def inward(value: float, lo: float, hi: float) -> float:
 
 def world_pose(socket_path: str, limits: Mapping[str, tuple[float, float]]) -> dict[str, float]:
     """The arm and hand joints of the world at ``socket_path`` right now."""
-    from .sim.world.client import WorldClient, WorldError
-    from .skills.gesture.keyframes import NEUTRAL
+    from ..sim.world.client import WorldClient, WorldError
+    from ..skills.gesture.keyframes import NEUTRAL
 
     try:
         with WorldClient(socket_path, timeout=10.0, connect_timeout=2.0) as client:
@@ -169,8 +160,8 @@ def build_keyframes(texts: list[str], previous: list[Keyframe], world: dict[str,
     """``previous`` frames, then one full frame per ``--keyframe``, then the world's pose at
     ``at``. A joint a frame does not name keeps the previous frame's value (NEUTRAL before the
     first frame). Raises :class:`Problems` with every problem found."""
-    from .skills.gesture.backend import Keyframe
-    from .skills.gesture.keyframes import NEUTRAL
+    from ..skills.gesture.backend import Keyframe
+    from ..skills.gesture.keyframes import NEUTRAL
 
     carry = dict(NEUTRAL)
     for frame in previous:
@@ -211,14 +202,16 @@ def moved_groups(frames: list[Keyframe]) -> list[str]:
     """Which limbs a gesture moves (differs from NEUTRAL anywhere, or changes between frames)."""
     names = _moving_joints(frames)
     groups = []
-    for label, prefix, is_hand in GROUPS:
+    from ..skills.gesture.keyframes import JOINT_GROUPS
+
+    for label, prefix, is_hand in JOINT_GROUPS:
         if any(n.startswith(prefix) and ("_hand_" in n) == is_hand for n in names):
             groups.append(label)
     return groups
 
 
 def _moving_joints(frames: list[Keyframe]) -> list[str]:
-    from .skills.gesture.keyframes import GESTURE_JOINTS, NEUTRAL
+    from ..skills.gesture.keyframes import GESTURE_JOINTS, NEUTRAL
 
     named = [j for j in GESTURE_JOINTS if any(j in f.joints for f in frames)]
     out = []
@@ -233,7 +226,7 @@ def keyframe_table(frames: list[Keyframe], limits: Mapping[str, tuple[float, flo
                    all_joints: bool = False) -> str:
     """One row per joint, one column per keyframe time, then the joint's limits. Only joints
     that move are shown unless ``all_joints``; a joint a frame does not name is blank."""
-    from .skills.gesture.keyframes import GESTURE_JOINTS
+    from ..skills.gesture.keyframes import GESTURE_JOINTS
 
     rows = [j for j in GESTURE_JOINTS if any(j in f.joints for f in frames)] if all_joints else _moving_joints(frames)
     scale, unit = (180.0 / math.pi, "deg") if degrees else (1.0, "rad")
@@ -258,7 +251,7 @@ def keyframe_table(frames: list[Keyframe], limits: Mapping[str, tuple[float, flo
 
 # -- commands ----------------------------------------------------------------------------------------
 def cmd_gesture_list(args: argparse.Namespace) -> int:
-    from . import gestures
+    from ..core import gestures
 
     aliases: dict[str, list[str]] = {}
     for alias, target in gestures.ALIASES.items():
@@ -271,7 +264,7 @@ def cmd_gesture_list(args: argparse.Namespace) -> int:
 
 
 def cmd_gesture_record(args: argparse.Namespace) -> int:
-    from .skills.gesture.keyframes import GestureFileError, load_gesture_file, save_gesture_file
+    from ..skills.gesture.keyframes import GestureFileError, load_gesture_file, save_gesture_file
 
     out = Path(args.output)
     try:
@@ -281,6 +274,8 @@ def cmd_gesture_record(args: argparse.Namespace) -> int:
             raise Problems(["--at needs --from-world"])
         if args.at is not None and (not math.isfinite(args.at) or args.at < 0):
             raise Problems([f"--at {args.at:g} must be a non-negative number of seconds"])
+        from ..skills.gesture.keyframes import joint_limits
+
         limits = joint_limits()
         previous = []
         if args.append and out.exists():
@@ -314,8 +309,8 @@ def _count(n: int) -> str:
 def load_for_show(source: str) -> tuple[str, list[Keyframe], str]:
     """(name, keyframes, where) of a gesture file, or of a library gesture when ``source`` is no
     file but a gesture name (its sim keyframes). Raises :class:`Problems`."""
-    from . import gestures
-    from .skills.gesture.keyframes import gesture_file_problems, keyframes, load_gesture_file
+    from ..core import gestures
+    from ..skills.gesture.keyframes import gesture_file_problems, keyframes, load_gesture_file
 
     path = Path(source)
     library = gestures.lookup(source) if not path.exists() else None
@@ -324,7 +319,7 @@ def load_for_show(source: str) -> tuple[str, list[Keyframe], str]:
     problems = gesture_file_problems(path)
     if problems:
         if problems == ["file not found"]:
-            from .suggest import did_you_mean
+            from ..core.suggest import did_you_mean
 
             problems = [f"file not found{did_you_mean(source, gestures.names())}"]
         raise Problems([f"{source}: {p}" for p in problems])
@@ -333,6 +328,8 @@ def load_for_show(source: str) -> tuple[str, list[Keyframe], str]:
 
 
 def cmd_gesture_show(args: argparse.Namespace) -> int:
+    from ..skills.gesture.keyframes import joint_limits
+
     try:
         name, frames, where = load_for_show(args.file)
     except Problems as e:
@@ -351,8 +348,8 @@ def cmd_gesture_show(args: argparse.Namespace) -> int:
 
 def cmd_gesture_play(args: argparse.Namespace) -> int:
     """Preview a gesture file or a library gesture on a running world's arms."""
-    from .sim.world.client import WorldClient, WorldError
-    from .skills.gesture.sim import BLEND_SECONDS, BLEND_THRESHOLD
+    from ..sim.world.client import WorldClient, WorldError
+    from ..skills.gesture.sim import BLEND_SECONDS, BLEND_THRESHOLD
 
     try:
         name, frames, _ = load_for_show(args.file)
@@ -401,7 +398,7 @@ def _wait_for_arms(client: Any, ends_at: float, started: float, stall: float = 3
 
 
 # -- wiring ------------------------------------------------------------------------------------------
-def add_gesture_commands(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Add ``gesture list|record|show|play`` to the top-level ``stuart-bt`` subparsers."""
     p = subparsers.add_parser("gesture", help="the gesture library; record, check and preview gesture files")
     gsub = p.add_subparsers(dest="gesture_command", metavar="ACTION", required=True)

@@ -21,18 +21,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
-from .blackboard import Blackboard
-from .catalogue import LEAVES
-from .clock import Clock, ScaledClock
-from .daemon.supervisor import Supervisor
-from .events import Event, EventStream, JsonlWriter
+from ..core.blackboard import Blackboard
+from ..core.catalogue import LEAVES
+from ..core.clock import Clock, ScaledClock
+from ..core.events import Event, EventStream, JsonlWriter
+from ..core.world import Pose, load_markers
+from ..daemon.supervisor import Supervisor
+from ..leaves import RunContext, make_leaf
+from ..tree.builder import build
+from ..tree.spec import TreeSpec
 from .executor import Executor, RunOutcome
-from .leaves import RunContext, make_leaf
 from .report import ReportBuilder, write_report
 from .snapshot import tree_event_data
-from .tree.builder import build
-from .tree.spec import TreeSpec
-from .world import Pose, load_markers
 
 BACKENDS = ("dry", "sim", "unitree")
 
@@ -140,7 +140,7 @@ class Session:
 
     def _start_world(self, start: Pose) -> None:
         """Launch the MuJoCo world server and make its sim time this run's clock (lockstep)."""
-        from .sim.world.client import launch_world
+        from ..sim.world.client import launch_world
 
         speed = self.options.speed if self.options.speed is not None else (1.0 if self.options.viewer else 0.0)
         self._world_log = open(self.run_dir / "world.stderr.log", "wb")  # noqa: SIM115 - the world's life
@@ -258,7 +258,7 @@ class Session:
 
     def _draw_map(self, out: Path) -> None:
         """The lab map with the markers, the path the robot drove and the known objects."""
-        from .sim.world.occupancy import draw_map_png, scene_grid
+        from ..sim.world.occupancy import draw_map_png, scene_grid
 
         path = [(e.data["x"], e.data["y"]) for e in self.recorder.events if e.kind == "pose"]
         markers = {m.name: {"x": m.x, "y": m.y, "yaw": m.yaw} for m in self.blackboard.world.markers.values()}

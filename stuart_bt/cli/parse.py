@@ -14,12 +14,8 @@ Each object: ``{"utterance", "wake", "command", "intents", "conversational"}`` (
 :mod:`stuart_bt.language.parse`), plus ``"resolution"`` (one entry per intent) with ``--markers``
 or ``--objects``.
 
-Wiring into the main CLI (``stuart_bt/cli.py``)::
-
-    from .language.cli import add_parse_command
-    add_parse_command(sub)
-
-Standalone: ``python -m stuart_bt.language.cli [options] UTTERANCE``.
+Like every module of :mod:`stuart_bt.cli`, it registers itself with ``add_command(subparsers)``.
+Standalone: ``python -m stuart_bt.cli.parse [options] UTTERANCE``.
 """
 
 from __future__ import annotations
@@ -30,14 +26,14 @@ import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, BinaryIO
 
-from ..jsonfile import to_json
+from ..core.jsonfile import to_json
 
 MAX_LINE_BYTES = 64 * 1024
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 HELP = "parse what was said: wake phrase, intents (JSON; --jsonl for one utterance per line)"
 
 
-def add_parse_command(subparsers: Any) -> argparse.ArgumentParser:
+def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Add ``parse`` to an argparse sub-command set (the main ``stuart-bt`` parser's)."""
     p = subparsers.add_parser("parse", help=HELP, description=__doc__.split("\n\n")[0])
     add_arguments(p)
@@ -60,9 +56,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def cmd_parse(args: argparse.Namespace) -> int:
-    from .parse import Parser
-    from .resolve import Resolver
-    from .wake import GREETINGS
+    from ..language.parse import Parser
+    from ..language.resolve import Resolver
+    from ..language.wake import GREETINGS
 
     if args.jsonl and args.utterance:
         print("stuart-bt parse: give UTTERANCE or --jsonl, not both", file=sys.stderr)
@@ -157,7 +153,7 @@ def _silence_stdout() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m stuart_bt.language.cli``: the same command without the main CLI."""
+    """``python -m stuart_bt.cli.parse``: the same command without the main CLI."""
     p = argparse.ArgumentParser(prog="stuart-bt parse", description=__doc__.split("\n\n")[0])
     add_arguments(p)
     args = p.parse_args(argv)

@@ -10,11 +10,11 @@ Parameter types:
 ``seconds``  a number >= 0
 ``angle``    radians, counter-clockwise positive (REP-103)
 ``marker``   a name from the marker file, when one is configured
-``gesture``  a name from :mod:`stuart_bt.gestures`
+``gesture``  a name from :mod:`stuart_bt.core.gestures`
 ``gestures`` a list of such names
 ``path``     a file path, relative to the tree file
 ``choice``   one of ``Param.choices``
-``expression`` a blackboard expression (:mod:`stuart_bt.expr`)
+``expression`` a blackboard expression (:mod:`stuart_bt.core.expr`)
 ``any``      any YAML value
 
 Any parameter may instead hold a blackboard reference ``$key`` resolved when the leaf starts.
