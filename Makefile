@@ -45,7 +45,7 @@ test: system-deps $(VENV)/.stamp-test
 
 ## lint: the ruff rule set and the type check (both configured in pyproject.toml); CI runs it first
 lint: system-deps $(VENV)/.stamp-test $(VENV)/.stamp-lint
-	$(BIN)/ruff check stuart_bt skills sim tasks tests bench
+	$(BIN)/ruff check stuart_bt skills sim tasks tests bench examples
 	$(BIN)/python scripts/typecheck.py
 
 ## bench: benchmarks -> bench/results.json and a table
