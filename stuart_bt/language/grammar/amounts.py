@@ -1,0 +1,183 @@
+"""Amounts of motion: distances, directions and angles ("two metres forward", "left 90",
+"a quarter turn"), with the defaults when none is said.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..intents import MOVE, TURN, TURN_AROUND
+from ..numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity
+from .lexicon import (
+    AROUND,
+    BACKWARD,
+    BOUNDARY,
+    DIRECTIONS,
+    FORWARD,
+    LEFT,
+    MOVE_FILLER,
+    RIGHT,
+    ROTATIONS,
+    TURN_FILLER,
+    VAGUE_BY_FIRST,
+)
+from .state import ParseState, Result
+
+
+def read_motion_terms(s: ParseState, i: int) -> tuple[tuple[int, int] | None, float | None, str, bool, int]:
+    """Direction and amount after a motion or turn verb, in any order ("forward two metres",
+    "2 m to the left", "a little to the right", "90 degrees clockwise"): (direction, amount,
+    its dimension, vague?, end). A rotation word (clockwise) counts as LEFT/RIGHT."""
+    toks, n = s.toks, s.n
+    direction: tuple[int, int] | None = None
+    amount: float | None = None
+    dim = ""
+    vague = False
+    j = i
+    for _ in range(12):
+        if j >= n:
+            break
+        t = toks[j]
+        if t in DIRECTIONS:
+            d = DIRECTIONS[t]
+            if direction is not None and d != direction:
+                break  # "forward and left" is two moves; "forward left" is not understood
+            direction = d
+            j += 1
+            continue
+        if t in ("clockwise", "cw", "anticlockwise", "counterclockwise", "ccw"):
+            direction = LEFT if ROTATIONS[t] > 0 else RIGHT
+            j += 1
+            continue
+        if t in ("anti", "counter") and j + 1 < n and toks[j + 1] == "clockwise":
+            direction = LEFT
+            j += 2
+            continue
+        if amount is None:
+            v = s.phrase_at(j, VAGUE_BY_FIRST)
+            if v is not None:
+                vague = True
+                j += len(v)
+                continue
+            if t in ("a", "an") and j + 1 < n and toks[j + 1] in ("few", "couple", "full", "quarter", "half"):
+                pass
+            q = read_quantity(toks, j) if (t[0].isdigit() or t in NUMBER_STARTS or (
+                t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) else None
+            if q is not None:
+                amount, dim = q.value, q.dimension
+                j = q.end
+                continue
+        if t in MOVE_FILLER or t in TURN_FILLER:
+            if t in ("the", "to", "your", "my") and j + 1 < n and (toks[j + 1] in DIRECTIONS or toks[j + 1] in (
+                    "the", "your", "my", "left", "right") or toks[j + 1] in ROTATIONS):
+                j += 1
+                continue
+            if t in ("a", "an", "the", "your", "my", "its", "of", "some", "way", "place", "side", "spot",
+                     "direction") or (j + 1 < n and toks[j + 1] not in BOUNDARY):
+                if t in ("a", "an") and not (j + 1 < n and (toks[j + 1] in UNITS or toks[j + 1] in NUMBER_STARTS)):
+                    break
+                j += 1
+                continue
+        break
+    return direction, amount, dim, vague, j
+
+NUMBER_STARTS = frozenset({
+    "a", "an", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
+    "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty", "thirty",
+    "forty", "fourty", "fifty", "sixty", "seventy", "eighty", "ninety", "hundred", "half", "quarter", "quarters",
+    "couple", "few", "several", "zero", "nought", "full", "complete", "whole", "pair", "pi", "point",
+})
+
+MAX_BARE_SIDESTEP_M = 10.0  # "left 90" with no unit: more than the lab is wide, so an angle
+
+STEP_WORDS = frozenset(w for w, (dim, factor) in UNITS.items() if dim == LENGTH and factor == STEP_M)
+
+_FRACTION_STARTS = frozenset({"a", "an", "half", "quarter", "quarters", "one", "three", "two"})  # "three quarters"
+
+
+def read_move(s: ParseState, i: int, verb: str, default_back: bool = False) -> Result:
+    """move_relative from the direction/amount after a motion verb; ``None`` if neither was said
+    or the amount is an angle."""
+    direction, amount, dim, vague, j = read_motion_terms(s, i)
+    if direction is None and amount is None and not vague and not default_back:
+        return None
+    if dim == ANGLE:
+        return None
+    d = s.defaults
+    if amount is None:
+        amount = d.vague_move_m if vague else (d.step_m if verb in ("step", "sidestep") else d.move_m)
+    elif dim == "" and verb in ("step", "sidestep"):
+        amount *= d.step_m  # "step back two": two steps
+    if direction is None:
+        direction = BACKWARD if default_back else FORWARD
+    return [(MOVE, "", amount * direction[0], amount * direction[1], 0.0)], j
+
+
+def read_turn_terms(s: ParseState, i: int, verb: str) -> Result:
+    """turn_by_angle / turn_around from what follows a turn verb (or stands alone: "left 90")."""
+    toks, n = s.toks, s.n
+    j = i
+    around = False
+    sign = 0
+    angle: float | None = None
+    vague = False
+    times = 1
+    for _ in range(12):
+        if j >= n:
+            break
+        t = toks[j]
+        if t in AROUND or t in ("back", "backward", "backwards", "behind") and verb in ("turn", "face", "spin"):
+            around = True
+            j += 1
+        elif t == "other" and j + 1 < n and toks[j + 1] in ("way", "direction", "side"):
+            around = True
+            j += 2
+        elif t == "face" and verb != "face":  # "turn to face the other way"
+            verb = "face"
+            j += 1
+        elif t == "away" and verb == "face":
+            around = True
+            j += 1
+        elif t in ROTATIONS and sign == 0:
+            sign = ROTATIONS[t]
+            j += 1
+        elif t in ("anti", "counter") and j + 1 < n and toks[j + 1] == "clockwise":
+            sign = 1
+            j += 2
+        elif t == "twice":
+            times = 2
+            j += 1
+        elif t in ("three", "four", "3", "4", "two", "2") and j + 1 < n and toks[j + 1] == "times":
+            times = int(read_number(toks, j)[0])  # type: ignore[index]
+            j += 2
+        elif angle is None and not vague and s.phrase_at(j, VAGUE_BY_FIRST) is not None:
+            vague = True
+            j += len(s.phrase_at(j, VAGUE_BY_FIRST) or ())
+        elif angle is None and (t[0].isdigit() or t in NUMBER_STARTS or (
+                t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) and (q := read_quantity(toks, j)) is not None:
+            if q.dimension == LENGTH:
+                return None
+            if q.dimension == ANGLE:
+                angle = q.value
+            elif q.value < 1 and toks[j] in _FRACTION_STARTS:
+                angle = q.value * 2 * math.pi  # "turn a quarter to the right", "turn half way round"
+                if angle == math.pi and s.at(q.end) in ("way", "turn") and s.at(q.end + 1) in AROUND:
+                    return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], q.end + 2  # "half way round": around
+            else:
+                angle = math.radians(q.value)  # a bare number in a turn is degrees
+            j = q.end
+        elif t in TURN_FILLER and j + 1 < n and toks[j + 1] not in BOUNDARY:
+            j += 1
+        elif t in ("turn",) and verb in ("turn", "make", "do", "take") and angle is not None:
+            j += 1  # "make a quarter turn"
+        else:
+            break
+    d = s.defaults
+    if angle is not None:
+        return [(TURN, "", 0.0, 0.0, (sign or 1) * angle * times)], j
+    if sign:
+        deg = d.vague_turn_deg if vague else d.turn_deg
+        return [(TURN, "", 0.0, 0.0, sign * math.radians(deg) * times)], j
+    if around:
+        return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], j
+    return None

@@ -1,0 +1,306 @@
+"""Clauses: polite openers and requests, which verb family reads a verb, verbless clauses
+(ellipsis, "about face", "high five!"), connectors between clauses.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND
+from ..numbers import ANGLE, word_value
+from .amounts import MAX_BARE_SIDESTEP_M, NUMBER_STARTS, read_motion_terms, read_move, read_turn_terms
+from .lexicon import (
+    ALL_VERBS,
+    AUX,
+    BOUNDARY,
+    CONNECTORS_BY_FIRST,
+    COPULA,
+    DETERMINERS,
+    DIRECTIONS,
+    FIND_VERBS,
+    GESTURE_NOUNS,
+    GESTURE_PHRASES,
+    GESTURE_VERBS,
+    GESTURES_BY_FIRST,
+    GUIDE_VERBS,
+    LEFT,
+    LIGHT_VERBS,
+    MODALS,
+    MOTION_VERBS,
+    OBJECT_PRONOUNS,
+    PICK_VERBS,
+    POLITE_BY_FIRST,
+    REORDER,
+    REQUESTS_BY_FIRST,
+    RIGHT,
+    ROTATIONS,
+    SPEAKER_OPENERS_BY_FIRST,
+    STOP_PHRASES_BY_FIRST,
+    STOP_VERBS,
+    SUBJECTS,
+    TO_WORDS,
+    TURN_IDIOMS_BY_FIRST,
+    TURN_VERBS,
+    WANTS,
+    WANTS_OBJECT,
+    WH,
+    WISH_QUESTIONS_BY_FIRST,
+)
+from .nouns import numbered_place, read_noun_phrase, read_object, read_place
+from .state import ParseState, Result, may_end
+from .verbs import (
+    VISIT_VERBS,
+    read_do,
+    read_find,
+    read_find_noun,
+    read_gesture,
+    read_guide,
+    read_motion,
+    read_pick,
+    read_stop,
+    read_turn,
+    read_visit_by,
+    skip_gesture_tail,
+)
+
+
+def _family(verb: str) -> Callable[[ParseState, int], Result] | None:
+    return _DISPATCH.get(verb)
+
+_DISPATCH: dict[str, Callable[[ParseState, int], Result]] = {}
+
+for _verbs, _reader in ((MOTION_VERBS, read_motion), (TURN_VERBS, read_turn), (PICK_VERBS, read_pick),
+                        (FIND_VERBS, read_find), (STOP_VERBS, read_stop), (GESTURE_VERBS, read_gesture),
+                        (LIGHT_VERBS, read_do)):
+    _DISPATCH.update(dict.fromkeys(_verbs, _reader))
+
+_DISPATCH["get"] = read_motion  # "get to the kitchen" / "get me a cup" (it hands over to read_pick)
+
+_DISPATCH["take"] = _take = read_do  # "take me to", "take a step", "take a left", else pick
+
+_DISPATCH["make"] = read_do
+
+_DISPATCH["give"] = read_do
+
+_DISPATCH["raise"] = read_gesture
+
+_DISPATCH["lift"] = read_pick
+
+_DISPATCH.update(dict.fromkeys(GUIDE_VERBS, read_guide))
+
+_DISPATCH["have"] = read_find_noun  # "have a look for ..." (and nothing else: "have a seat")
+
+
+def _polite(s: ParseState, i: int) -> int:
+    """Index after polite openers ("could you please", "would you mind", "I want you to",
+    "let's", "you", "please") that come before the verb."""
+    toks, n = s.toks, s.n
+    for _ in range(8):
+        if i >= n:
+            break
+        t = toks[i]
+        p = s.phrase_at(i, POLITE_BY_FIRST) if t in POLITE_BY_FIRST else None
+        if p is None:
+            if t in MODALS and i + 1 < n and toks[i + 1] == "you":
+                i += 2
+                continue
+            if t == "you" and i + 1 < n and toks[i + 1] in ALL_VERBS and toks[i + 1] not in ("look", "do", "stand",
+                                                                                             "back", "hold"):
+                i += 1
+                continue
+            break
+        if p == ("right",) and (i + 1 >= n or toks[i + 1] in BOUNDARY or toks[i + 1] in NUMBER_STARTS or toks[
+                i + 1][:1].isdigit() or toks[i + 1] in ("by", "about", "turn")):
+            break  # "right" is a direction here
+        if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
+            break
+        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS:
+            break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
+        i += len(p)
+    return i
+
+
+# polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
+_BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
+                                 ("you", "mind")})
+
+
+def _request(s: ParseState, i: int) -> Result:
+    """ "can I have a hug" / "could we get the bottle" (gesture or pick_up) and "I want a high
+    five" / "I'd love a hug" (gestures only: "I want the kitchen clean" is no command)."""
+    p = s.phrase_at(i, REQUESTS_BY_FIRST)
+    if p is None:
+        return None
+    j = i + len(p)
+    k = j + 1 if s.at(j) in DETERMINERS else j
+    g = s.phrase_at(k, GESTURES_BY_FIRST)
+    if g is not None and (len(g) > 1 or g[0] != "five"):
+        return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], skip_gesture_tail(s, k + len(g))
+    if s.at(j) in ("to", "some", "help", "a") and s.at(j + 1) in ("help", "hand", "minute", "word"):
+        return None
+    if p in WANTS and not (p in WANTS_OBJECT and s.at(j) in ("the", "a", "an", "that", "this", "my")):
+        return None
+    words, e = read_noun_phrase(s, j)
+    if p in WANTS and (not may_end(s, e) or any(len(w) > 4 and w.endswith("ed") for w in words[1:])):
+        return None  # "I'd like the kitchen cleaned": no object handed over
+    target = read_object(s, words)
+    return ([(PICK, target, 0.0, 0.0, 0.0)], e) if target else None
+
+RECIPROCAL = frozenset({"hug", "shake hand", "high five"})  # gestures made with someone
+
+
+def _reciprocal(s: ParseState, i: int) -> Result:
+    """ "let me shake your hand" / "can I give you a hug": the robot's half of a shared gesture."""
+    p = s.phrase_at(i, SPEAKER_OPENERS_BY_FIRST)
+    if p is None:
+        return None
+    j = i + len(p)
+    while s.at(j) in ("please", "just"):
+        j += 1
+    if j >= s.n or (s.toks[j] not in GESTURE_VERBS and s.toks[j] not in LIGHT_VERBS and s.toks[j] != "high"):
+        return None
+    got = read_clause(s, j)
+    if got is None or any(a != GESTURE or tg not in RECIPROCAL for a, tg, *_ in got[0]):
+        return None
+    return got
+
+
+def opens_conversation(s: ParseState, i: int) -> bool:
+    """Whether the clause at ``i`` opens like a question or statement (so the sentence is
+    conversation to its end): wh-words, auxiliaries, subjects, wishes ("would you like")."""
+    toks, n = s.toks, s.n
+    t = toks[i]
+    if t in WH or t in AUX or t in SUBJECTS:
+        return True
+    if t == "do" and i + 1 < n and toks[i + 1] in ("you", "i", "we", "they", "it", "he", "she", "not"):
+        return True
+    if t in MODALS and i + 1 < n and toks[i + 1] != "you":
+        return True
+    if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
+        return True
+    return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
+
+
+def read_clause(s: ParseState, i: int) -> Result:
+    """One clause at ``i`` (after a connector): polite openers, then a verb phrase, or one of the
+    verbless forms (stop phrases, "about face", a gesture name, an elliptic direction or noun
+    phrase continuing the clause before)."""
+    toks, n = s.toks, s.n
+    if toks[i] in REQUESTS_BY_FIRST and (got := _request(s, i)) is not None:
+        return got
+    if toks[i] in SPEAKER_OPENERS_BY_FIRST and (got := _reciprocal(s, i)) is not None:
+        return got
+    if toks[i] in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
+        return None
+    i = _polite(s, i)
+    if i >= n:
+        return None
+    t = toks[i]
+    if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY):
+        return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
+    if t in VISIT_VERBS and s.at(i + 1) == "by" and (got := read_visit_by(s, i)) is not None:
+        return got
+    sp = s.phrase_at(i, STOP_PHRASES_BY_FIRST) if t in STOP_PHRASES_BY_FIRST else None
+    if sp is not None and (len(sp) > 1 or t in ("stop", "halt", "freeze", "enough", "whoa", "woah")):
+        if t in ("stop", "halt", "freeze"):
+            return read_stop(s, i)
+        j = i + len(sp)
+        if t in ("easy", "steady", "enough") and not may_end(s, j):
+            return None
+        if sp[0] in ("dont", "do") and (s.at(j) in TO_WORDS or s.at(j) in ("near", "over", "across", "through")):
+            return None  # "don't walk into the bathroom": a negated command, not "don't move"
+        while j < n and toks[j] not in BOUNDARY:
+            j += 1
+        return [(STOP, "", 0.0, 0.0, 0.0)], j
+    if t in ("dont", "never") or (t == "do" and s.at(i + 1) == "not") or t == "not":
+        return None  # a negated command is no command
+    handler = _DISPATCH.get(t)
+    if handler is not None:
+        got = handler(s, i)
+        if got is not None:
+            return got
+        if t not in DIRECTIONS and t not in ("back",):
+            return None
+    return _verbless(s, i)
+
+
+def _verbless(s: ParseState, i: int) -> Result:
+    """Clauses with no verb: "about face", "high five!", "forward two metres", "left 90",
+    and ellipsis after a connector ("... and the bathroom", "... then right")."""
+    toks, n = s.toks, s.n
+    t = toks[i]
+    idiom = s.phrase_at(i, TURN_IDIOMS_BY_FIRST)
+    if idiom is not None and may_end(s, i + len(idiom)):
+        return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], i + len(idiom)
+    k = i + 1 if t in DETERMINERS and i + 1 < n else i
+    g = s.phrase_at(k, GESTURES_BY_FIRST)
+    if g is not None and (len(g) > 1 or g[0] not in ("five", "kiss", "waves", "kisses")) and may_end(s, k + len(g)):
+        end = k + len(g)
+        while end < n and toks[end] in GESTURE_NOUNS:
+            end += 1
+        return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], end
+    last = s.last_action
+    if last == NAVIGATE and t in TO_WORDS and t != "for" and i + 1 < n:  # "... then to the kitchen"
+        k = i + 1
+        while k < n and toks[k] in ("the", "your", "my"):
+            k += 1
+        if s.at(k) not in DIRECTIONS:
+            words, j = read_noun_phrase(s, i + 1)
+            target = read_place(s, words)
+            if target is not None and may_end(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
+                return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
+            return None
+    if last == NAVIGATE and word_value(t) is not None and (num := numbered_place(s.last_place)) and may_end(s, i + 1):
+        return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
+    if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in NUMBER_STARTS or (
+            t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
+        if s.first or last in (MOVE, TURN, TURN_AROUND):
+            turnish = last in (TURN, TURN_AROUND)
+            if not turnish and s.first:
+                direction, amount, dim, vague, j = read_motion_terms(s, i)
+                if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
+                    return None  # "right." alone is an acknowledgement as often as a command
+                turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
+                    dim == "" and amount > MAX_BARE_SIDESTEP_M)))  # "left 90": degrees, never 90 m
+            got = read_turn_terms(s, i, "turn") if turnish else read_move(s, i, "move")
+            if got is not None and may_end(s, got[1]):
+                return got
+        return None
+    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
+            not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
+        words, j = read_noun_phrase(s, i)
+        if not words or not may_end(s, j) or any(w in DETERMINERS for w in words[1:]):
+            return None  # "... and close the door": a verb and its object, not a second place
+        target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
+        if target is None:
+            return None
+        return [(last, target, 0.0, 0.0, 0.0)], j
+    return None
+
+
+def read_topic(s: ParseState, i: int) -> bool:
+    """A first clause that is only a noun phrase before a comma ("the kitchen, please go there")
+    becomes what "there" and "it" mean; True when it was one."""
+    if not s.first or s.toks[i] not in DETERMINERS:
+        return False
+    words, j = read_noun_phrase(s, i)
+    if s.at(j) != "," or not words or words[0] in SUBJECTS or any(w in COPULA or w in AUX for w in words):
+        return False
+    s.topic = " ".join(words)
+    return True
+
+
+def read_connector(s: ParseState, i: int) -> tuple[str, int] | None:
+    """A connector at ``i``: ("next", end), ("reorder", end) for "but first", ("or", end)."""
+    t = s.toks[i]
+    if t == "to" and i + 1 < s.n and s.toks[i + 1] in ALL_VERBS:
+        return "next", i + 1
+    if t == "or":
+        return "or", i + 1
+    if t not in CONNECTORS_BY_FIRST:
+        return None
+    c = s.phrase_at(i, CONNECTORS_BY_FIRST)
+    if c is None:
+        return None
+    return ("reorder" if c in REORDER else "next"), i + len(c)

@@ -1,0 +1,168 @@
+"""Noun phrases: objects, places ("the charging dock", "station 3", "there"), lists of them."""
+
+from __future__ import annotations
+
+from ..intents import NAVIGATE
+from ..numbers import word_value
+from .lexicon import (
+    ALL_VERBS,
+    BOUNDARY,
+    DETERMINERS,
+    GENERIC,
+    HOME,
+    NP_BLOCK,
+    NP_LEADERS,
+    NP_STOP,
+    OBJECT_PRONOUNS,
+    PRONOUNS,
+    STRONG_VERBS,
+    SURFACES,
+    TO_WORDS,
+    VERB_PARTICLES,
+)
+from .state import ParseState, Result
+
+
+def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
+    """A noun phrase from ``i`` to the next connector, preposition or trailing word; leading
+    determiners removed ("the red cup" -> ["red", "cup"]). Returns (words, end)."""
+    toks, n, stop = s.toks, s.n, s.stop_words
+    j = i
+    while j < n:
+        t = toks[j]
+        if t in stop:
+            if j == i and t in ("that", "this", "there", "here", "right"):
+                j += 1  # "pick that up", "go there": the caller reads a pronoun
+                if t != "that" or j >= n or toks[j] in stop:
+                    break
+                continue
+            if t == "next" and j + 1 < n and toks[j + 1] not in ("to",):
+                j += 1  # "the next station"
+                continue
+            if t == "right" and j > i and (j + 1 >= n or toks[j + 1] in BOUNDARY or toks[j + 1] in NP_STOP):
+                break
+            if t == "right" and j + 1 < n and toks[j + 1] not in ("now", "there", "here", "away"):
+                j += 1  # "the right cup", "right kiss" read by other rules first
+                continue
+            break
+        if j > i and t in STRONG_VERBS:
+            break
+        if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
+            break
+        if t == "back" and j > i and toks[j - 1] not in DETERMINERS and (
+                j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
+                or toks[j + 1] in ("here", "there", "over")):
+            break  # "bring the book back to the entrance", "put it back"
+        j += 1
+    words = toks[i:j]
+    while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS):
+        words = words[1:]
+    return words, j
+
+
+def _no_noun(words: list[str]) -> bool:
+    """A cut-off phrase with no noun: a lone determiner ("go to the"), or a verb and its
+    indirect object ("give me give me")."""
+    return (len(words) == 1 and words[0] in DETERMINERS) or (
+        len(words) == 2 and words[0] in ALL_VERBS and words[1] in OBJECT_PRONOUNS)
+
+
+def read_object(s: ParseState, words: list[str]) -> str | None:
+    """The spoken object of a pick or find, with "it"/"them"/"that one" meaning the last object
+    named in this command; ``None`` when nothing usable was said."""
+    if not words:
+        return None
+    text = " ".join(words)
+    if text in PRONOUNS:
+        return s.last_object or s.topic or None  # "pick it up" with nothing named before: no command
+    if words[0] in ("it", "them", "him", "her", "me", "us") or _no_noun(words):
+        return None  # "take it easy", "bring it on"
+    if text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no"):
+        return None
+    if all(word_value(w) is not None for w in words):
+        return None  # "take five": a number is no object
+    return text
+
+
+def read_place(s: ParseState, words: list[str]) -> str | None:
+    """The spoken place of a navigation, with "there" meaning the last place named; a plural
+    before a number is singular ("stations one, two and three": "station one", ...)."""
+    if not words:
+        return None
+    if len(words) >= 2 and words[-2].endswith("s") and not words[-2].endswith("ss") and word_value(
+            words[-1]) is not None:
+        words = [*words[:-2], words[-2][:-1], words[-1]]
+    text = " ".join(words)
+    if text in ("there", "that place", "it", "that"):
+        return s.last_place or s.topic or None
+    if (text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here"
+            or _no_noun(words) or words[-1] in OBJECT_PRONOUNS):
+        return None  # ... and "(sorry) to bother you": a verb and its object, no place
+    return text
+
+
+def numbered_place(place: str) -> tuple[str, float] | None:
+    """ "station three" -> ("station", 3.0): a place named by a number, or ``None``."""
+    head, _, last = place.rpartition(" ")
+    value = word_value(last) if head else None
+    return (head, value) if value is not None else None
+
+
+def read_go(s: ParseState, target: str | None, e: int) -> Result:
+    """navigate_to_marker ``target`` (ending at ``e``); a numbered range is one per number:
+    "visit stations 1 to 3", "station one through three" -> station 1, station 2, station 3."""
+    if target is None:
+        return None
+    num = numbered_place(target) if s.at(e) in ("to", "through", "thru") else None
+    last = word_value(s.at(e + 1)) if num else None
+    if num and last is not None and num[1] == int(num[1]) and last == int(last) and num[1] < last <= num[1] + 10:
+        return [(NAVIGATE, f"{num[0]} {k}", 0.0, 0.0, 0.0) for k in range(int(num[1]), int(last) + 1)], e + 2
+    return [(NAVIGATE, target, 0.0, 0.0, 0.0)], e
+
+
+def read_shared_list(s: ParseState, e: int) -> tuple[list[str], int]:
+    """More objects after the first ("the cup and the bottle", "the cup, the book and the
+    apple") when a source or destination follows the last one, which then applies to all:
+    (the other objects, end). Without one the list is left to the ellipsis rule."""
+    more: list[str] = []
+    k = e
+    while s.at(k) in (",", "and"):
+        k += 1
+        if s.at(k) == "and":
+            k += 1
+        if s.at(k) not in DETERMINERS:
+            return [], e
+        words, k2 = read_noun_phrase(s, k)
+        obj = read_object(s, words) if words else None
+        if obj is None:
+            return [], e
+        more.append(obj)
+        k = k2
+    if more and (s.at(k) == "from" or s.at(k) in ("to", "into") and s.at(k + 1) in DETERMINERS | {"station"}):
+        return more, k
+    return [], e
+
+
+def read_way_to(s: ParseState, m: int) -> Result:
+    """After "make your way" / "find your way": (over, back, ...) to PLACE."""
+    while s.at(m) in ("over", "back", "down", "up", "across", "round", "around", "straight"):
+        m += 1
+    if s.at(m) not in TO_WORDS:
+        return None
+    words, e = read_noun_phrase(s, m + 1)
+    target = read_place(s, words)
+    return ([(NAVIGATE, target, 0.0, 0.0, 0.0)], e) if target else None
+
+
+def read_arrival(s: ParseState, i: int) -> Result:
+    """After "when you" / "once you": being somewhere is getting there ("once you're at the
+    workbench, pick up the screwdriver", "when you arrive in the kitchen ..."): navigate_to_marker,
+    dropped like any subordinate clause when it repeats the navigation before it. (After "if"
+    it is a condition, not a plan.)"""
+    if s.at(i) in ("are", "re", "arrive", "arrived", "get", "got"):
+        i += 1  # "when you are at ...", "once you arrive at ..."
+    if s.at(i) not in ("at", "in", "inside", "by", "near"):
+        return None
+    words, e = read_noun_phrase(s, i + 1)
+    place = read_place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], e) if place and words[-1] not in SURFACES else None

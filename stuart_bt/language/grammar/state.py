@@ -1,0 +1,104 @@
+"""One parse's state (tokens, what came before, settings) and the small helpers every reader uses."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..numbers import STEP_M
+from .lexicon import (
+    ALL_VERBS,
+    BOUNDARY,
+    CONDITIONS,
+    CORRECTIONS_BY_FIRST,
+    DETERMINERS,
+    STRONG_VERBS,
+    TRAILING,
+    VERB_PARTICLES,
+)
+
+Spec = tuple[str, str, float, float, float]  # (action, target, x, y, yaw): an intent without raw_text
+
+Result = tuple[list[Spec], int] | None
+
+
+@dataclass(frozen=True)
+class Defaults:
+    """Amounts used when the speaker gives none. Why these: a metre is the smallest distance
+    the G1 walks cleanly (its controller ignores speeds below ~0.3 m/s, so shorter moves are
+    mostly start and stop); a step of the G1 is about half a metre; "turn left" means a right
+    angle; "a bit" is deliberately small."""
+
+    move_m: float = 1.0
+    vague_move_m: float = 0.5  # "a bit", "a little", "slightly"
+    step_m: float = STEP_M  # "take a step back" (numbers.STEP_M: "two steps" is a length)
+    turn_deg: float = 90.0
+    vague_turn_deg: float = 30.0
+
+
+@dataclass
+class ParseState:
+    """One parse: the tokens, what came before (for "it", "there" and ellipsis) and settings."""
+
+    toks: list[str]
+    n: int
+    defaults: Defaults
+    stop_words: frozenset[str]
+    read_clause: Callable[[ParseState, int], Result]  # for a verb that leads into another ("go and get ...")
+    last_action: str = ""
+    last_object: str = ""
+    last_place: str = ""
+    topic: str = ""  # a bare noun phrase said before the command ("the kitchen, go there")
+    first: bool = True
+    subordinate: bool = False  # reading "when you ...": "you" is the subject, so no ellipsis
+
+    def at(self, i: int) -> str:
+        return self.toks[i] if i < self.n else ""
+
+    def phrase_at(self, i: int, table: dict[str, tuple[tuple[str, ...], ...]]) -> tuple[str, ...] | None:
+        """The longest entry of ``table`` (by first word) that the tokens at ``i`` spell."""
+        forms = table.get(self.toks[i]) if i < self.n else None
+        if forms:
+            toks = self.toks
+            for f in forms:
+                k = len(f)
+                if k == 1 or tuple(toks[i:i + k]) == f:
+                    return f
+        return None
+
+
+def may_end(s: ParseState, j: int) -> bool:
+    """Whether the clause may end at ``j``: end of text, a connector, or trailing words only."""
+    toks, n = s.toks, s.n
+    while j < n:
+        t = toks[j]
+        if t in BOUNDARY:
+            return True
+        if t not in TRAILING and t not in s.stop_words:
+            return False
+        j += 1
+    return True
+
+
+def skip_rest(s: ParseState, j: int) -> int:
+    """After a clause: skip words the grammar does not use ("at the door", "quickly") up to the
+    next connector, a purpose "to <verb>", or a new verb that starts a command."""
+    toks, n = s.toks, s.n
+    condition = False  # after "until", "unless", "if", "while": a verb is part of the condition
+    while j < n:
+        t = toks[j]
+        if t in BOUNDARY and not (condition and t in ("when", "once", "after", "before")):
+            break
+        if t in CONDITIONS:
+            condition = True
+        elif not condition:
+            if t in CORRECTIONS_BY_FIRST and s.phrase_at(j, CORRECTIONS_BY_FIRST) is not None:
+                break  # "go to the kitchen no the bathroom"
+            if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
+                break
+            if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
+                break
+            if (t, s.at(j + 1)) in VERB_PARTICLES and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
+                break
+        j += 1
+    return j

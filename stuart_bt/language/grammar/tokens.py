@@ -1,0 +1,109 @@
+"""Text to tokens: lower case, clause punctuation as tokens, number-unit runs split, hesitations and
+repeats dropped, ing-forms of known verbs made plain; and the way back to character spans.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..numbers import UNITS, word_value
+from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, SPLITS
+
+_NUM_UNIT = re.compile(r"(\d+(?:[.,]\d+)?)([^\W\d_]+|°)$")
+
+MAX_TOKENS = 200  # a spoken command is never longer; the rest of a longer text is not read
+
+_SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS))
+
+
+class Tokens:
+    """The tokens of a text and, computed only when asked (for ``raw_text``), their spans."""
+
+    __slots__ = ("_low", "_offsets", "_raw", "_src", "toks")
+
+    def __init__(self, toks: list[str], src: list[int], raw: list[str], low: str) -> None:
+        self.toks = toks
+        self._src = src  # token index -> index of the whitespace-separated piece it came from
+        self._raw = raw
+        self._low = low
+        self._offsets: list[int] | None = None
+
+    def without(self, token: str) -> Tokens:
+        """The same tokens with every ``token`` left out."""
+        keep = [k for k, t in enumerate(self.toks) if t != token]
+        return Tokens([self.toks[k] for k in keep], [self._src[k] for k in keep], self._raw, self._low)
+
+    def span(self, first: int, last: int) -> tuple[int, int]:
+        """Character span in the text from token ``first`` to token ``last`` (inclusive)."""
+        if self._offsets is None:
+            offsets, pos, low = [], 0, self._low
+            for piece in self._raw:
+                at = low.find(piece, pos)
+                offsets.append(at)
+                pos = at + len(piece)
+            self._offsets = offsets
+        a, b = self._src[first], self._src[last]
+        return self._offsets[a], self._offsets[b] + len(self._raw[b])
+
+_SEPARATE = str.maketrans({
+    **{c: " " for c in "\"()[]{}<>*+=/|~^`@#$%:_-–—‐‑“”„«»…•·\t\n\r"},
+    **{c: f" {c} " for c in ".,;!?&°"},
+    "’": "'", "‘": "'",
+})
+
+_DECIMAL = re.compile(r"\d[.,]\d")
+
+_NUMBER_PIECE = re.compile(r"\d+(?:[.,]\d+)?[^\W_]*|[^\W\d_][^\W_]*(?:'[^\W_]+)*|[.;!?,°&]")
+
+
+def tokenize(text: str) -> Tokens:
+    """Lower-case tokens of ``text``. Punctuation that separates clauses (``. , ; ! ? &``) is a
+    token, other symbols are spaces; apostrophes are dropped ("let's" -> "lets": recognisers write
+    both); number-unit runs are split ("1.5m"); hesitations ("um", "uh"; "mm" unless a number is
+    before it: "500 mm") and immediate repeats ("the the") are removed; ing-forms of known verbs
+    become the verb ("turning" -> "turn"). At most MAX_TOKENS tokens are read."""
+    low = text.lower()
+    if len(low) != len(text):  # a few characters change length in lower(): keep offsets right
+        low = "".join(c.lower() if len(c.lower()) == 1 else c for c in text)
+    if _DECIMAL.search(low):  # "1.5": the period is no separator here (rare: the slow way)
+        pieces = _NUMBER_PIECE.findall(low.replace("’", "'").translate(_KEEP_POINTS))
+    else:
+        pieces = low.translate(_SEPARATE).split()
+    toks: list[str] = []
+    src: list[int] = []
+    last = ""
+    special = _SPECIAL
+    for k, t in enumerate(pieces):
+        if t in special or t == last or "'" in t or t[0] <= "9":
+            if "'" in t:
+                t = t.replace("'", "")
+                if not t:
+                    continue
+            if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
+                continue  # "um"; but "500 mm" is a unit, not a hum
+            if t == last and t not in HARD_STOPS and t != ",":
+                continue
+            c = t[0]
+            if "0" <= c <= "9":
+                um = _NUM_UNIT.match(t)
+                if um and um.group(2) in UNITS:
+                    toks += (um.group(1), um.group(2))
+                    src += (k, k)
+                    last = um.group(2)
+                    continue
+            elif t in SPLITS:
+                parts = SPLITS[t]
+                toks += parts
+                src += (k,) * len(parts)
+                last = parts[-1]
+                continue
+            elif t in GERUNDS:
+                t = GERUNDS[t]
+        toks.append(t)
+        src.append(k)
+        last = t
+        if len(toks) >= MAX_TOKENS:
+            break
+    return Tokens(toks, src, pieces, low)
+
+_KEEP_POINTS = str.maketrans({c: " " for c in "\"()[]{}<>*+=/|~^`@#$%:_-–—‐‑“”„«»…•·\t\n\r"})
