@@ -5,9 +5,10 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..intents import MOVE, TURN, TURN_AROUND
-from ..numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, read_number, read_quantity
+from ..numbers import ANGLE, LENGTH, SOUNDS_LIKE, STEP_M, UNITS, Quantity, read_number, read_quantity
 from .lexicon import (
     AROUND,
     BACKWARD,
@@ -113,71 +114,101 @@ def read_move(s: ParseState, i: int, verb: str, default_back: bool = False) -> R
     return [(MOVE, "", amount * direction[0], amount * direction[1], 0.0)], j
 
 
+@dataclass
+class _Turn:
+    """What a turn's words said so far."""
+
+    verb: str
+    j: int
+    around: bool = False
+    sign: int = 0
+    angle: float | None = None
+    vague: bool = False
+    times: int = 1
+
+
 def read_turn_terms(s: ParseState, i: int, verb: str) -> Result:
     """turn_by_angle / turn_around from what follows a turn verb (or stands alone: "left 90")."""
-    toks, n = s.toks, s.n
-    j = i
-    around = False
-    sign = 0
-    angle: float | None = None
-    vague = False
-    times = 1
+    r = _Turn(verb, i)
     for _ in range(12):
-        if j >= n:
+        if r.j >= s.n:
             break
-        t = toks[j]
-        if t in AROUND or t in ("back", "backward", "backwards", "behind") and verb in ("turn", "face", "spin"):
-            around = True
-            j += 1
-        elif t == "other" and j + 1 < n and toks[j + 1] in ("way", "direction", "side"):
-            around = True
-            j += 2
-        elif t == "face" and verb != "face":  # "turn to face the other way"
-            verb = "face"
-            j += 1
-        elif t == "away" and verb == "face":
-            around = True
-            j += 1
-        elif t in ROTATIONS and sign == 0:
-            sign = ROTATIONS[t]
-            j += 1
-        elif t in ("anti", "counter") and j + 1 < n and toks[j + 1] == "clockwise":
-            sign = 1
-            j += 2
-        elif t == "twice":
-            times = 2
-            j += 1
-        elif t in ("three", "four", "3", "4", "two", "2") and j + 1 < n and toks[j + 1] == "times":
-            times = int(read_number(toks, j)[0])  # type: ignore[index]
-            j += 2
-        elif angle is None and not vague and s.phrase_at(j, VAGUE_BY_FIRST) is not None:
-            vague = True
-            j += len(s.phrase_at(j, VAGUE_BY_FIRST) or ())
-        elif angle is None and (t[0].isdigit() or t in NUMBER_STARTS or (
-                t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) and (q := read_quantity(toks, j)) is not None:
+        t = s.toks[r.j]
+        if _turn_direction(s, r, t) or _turn_count(s, r, t):
+            continue
+        if r.angle is None and not r.vague and (vague := s.phrase_at(r.j, VAGUE_BY_FIRST)) is not None:
+            r.vague = True
+            r.j += len(vague)
+        elif r.angle is None and (t[0].isdigit() or t in NUMBER_STARTS or (
+                t in SOUNDS_LIKE and s.at(r.j + 1) in UNITS)) and (q := read_quantity(s.toks, r.j)) is not None:
             if q.dimension == LENGTH:
                 return None
-            if q.dimension == ANGLE:
-                angle = q.value
-            elif q.value < 1 and toks[j] in _FRACTION_STARTS:
-                angle = q.value * 2 * math.pi  # "turn a quarter to the right", "turn half way round"
-                if angle == math.pi and s.at(q.end) in ("way", "turn") and s.at(q.end + 1) in AROUND:
-                    return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], q.end + 2  # "half way round": around
-            else:
-                angle = math.radians(q.value)  # a bare number in a turn is degrees
-            j = q.end
-        elif t in TURN_FILLER and j + 1 < n and toks[j + 1] not in BOUNDARY:
-            j += 1
-        elif t in ("turn",) and verb in ("turn", "make", "do", "take") and angle is not None:
-            j += 1  # "make a quarter turn"
+            if _half_way_round(s, q, t):
+                return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], q.end + 2
+            r.angle, r.j = _turn_angle(q, t), q.end
+        elif t in TURN_FILLER and r.j + 1 < s.n and s.toks[r.j + 1] not in BOUNDARY:
+            r.j += 1
+        elif t in ("turn",) and r.verb in ("turn", "make", "do", "take") and r.angle is not None:
+            r.j += 1  # "make a quarter turn"
         else:
             break
+    return _turn_result(s, r)
+
+
+def _turn_direction(s: ParseState, r: _Turn, t: str) -> bool:
+    """Which way: "around", "the other way", "to face away", "left", "anticlockwise"."""
+    if t in AROUND or t in ("back", "backward", "backwards", "behind") and r.verb in ("turn", "face", "spin"):
+        r.around, r.j = True, r.j + 1
+    elif t == "other" and s.at(r.j + 1) in ("way", "direction", "side"):
+        r.around, r.j = True, r.j + 2
+    elif t == "face" and r.verb != "face":  # "turn to face the other way"
+        r.verb, r.j = "face", r.j + 1
+    elif t == "away" and r.verb == "face":
+        r.around, r.j = True, r.j + 1
+    elif t in ROTATIONS and r.sign == 0:
+        r.sign, r.j = ROTATIONS[t], r.j + 1
+    elif t in ("anti", "counter") and s.at(r.j + 1) == "clockwise":
+        r.sign, r.j = 1, r.j + 2
+    else:
+        return False
+    return True
+
+
+def _turn_count(s: ParseState, r: _Turn, t: str) -> bool:
+    """How many times: "twice", "three times"."""
+    if t == "twice":
+        r.times, r.j = 2, r.j + 1
+    elif t in ("three", "four", "3", "4", "two", "2") and s.at(r.j + 1) == "times":
+        count = read_number(s.toks, r.j)
+        r.times, r.j = int(count[0]) if count else 1, r.j + 2
+    else:
+        return False
+    return True
+
+
+def _half_way_round(s: ParseState, q: Quantity, t: str) -> bool:
+    """ "half way round", "a half turn around": a turn around, however it was said."""
+    return (q.dimension != ANGLE and q.value < 1 and t in _FRACTION_STARTS and q.value * 2 * math.pi == math.pi
+            and s.at(q.end) in ("way", "turn") and s.at(q.end + 1) in AROUND)
+
+
+def _turn_angle(q: Quantity, t: str) -> float:
+    """Radians from an amount: an angle as said; a fraction of a full turn ("a quarter", "half
+    way"); a bare number is degrees."""
+    if q.dimension == ANGLE:
+        return q.value
+    if q.value < 1 and t in _FRACTION_STARTS:
+        return q.value * 2 * math.pi  # "turn a quarter to the right", "turn half way round"
+    return math.radians(q.value)
+
+
+def _turn_result(s: ParseState, r: _Turn) -> Result:
     d = s.defaults
-    if angle is not None:
-        return [(TURN, "", 0.0, 0.0, (sign or 1) * angle * times)], j
-    if sign:
-        deg = d.vague_turn_deg if vague else d.turn_deg
-        return [(TURN, "", 0.0, 0.0, sign * math.radians(deg) * times)], j
-    if around:
-        return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], j
+    if r.angle is not None:
+        return [(TURN, "", 0.0, 0.0, (r.sign or 1) * r.angle * r.times)], r.j
+    if r.sign:
+        deg = d.vague_turn_deg if r.vague else d.turn_deg
+        return [(TURN, "", 0.0, 0.0, r.sign * math.radians(deg) * r.times)], r.j
+    if r.around:
+        return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], r.j
     return None

@@ -203,16 +203,7 @@ def read_clause(s: ParseState, i: int) -> Result:
         return got
     sp = s.phrase_at(i, STOP_PHRASES_BY_FIRST) if t in STOP_PHRASES_BY_FIRST else None
     if sp is not None and (len(sp) > 1 or t in ("stop", "halt", "freeze", "enough", "whoa", "woah")):
-        if t in ("stop", "halt", "freeze"):
-            return read_stop(s, i)
-        j = i + len(sp)
-        if t in ("easy", "steady", "enough") and not may_end(s, j):
-            return None
-        if sp[0] in ("dont", "do") and (s.at(j) in TO_WORDS or s.at(j) in ("near", "over", "across", "through")):
-            return None  # "don't walk into the bathroom": a negated command, not "don't move"
-        while j < n and toks[j] not in BOUNDARY:
-            j += 1
-        return [(STOP, "", 0.0, 0.0, 0.0)], j
+        return _stop_phrase(s, i, sp)
     if t in ("dont", "never") or (t == "do" and s.at(i + 1) == "not") or t == "not":
         return None  # a negated command is no command
     handler = _DISPATCH.get(t)
@@ -225,58 +216,96 @@ def read_clause(s: ParseState, i: int) -> Result:
     return _verbless(s, i)
 
 
+def _stop_phrase(s: ParseState, i: int, phrase: tuple[str, ...]) -> Result:
+    """A stop said as a phrase ("hold on", "that's enough", "don't move"), to the next connector."""
+    t = s.toks[i]
+    if t in ("stop", "halt", "freeze"):
+        return read_stop(s, i)
+    j = i + len(phrase)
+    if t in ("easy", "steady", "enough") and not may_end(s, j):
+        return None
+    if phrase[0] in ("dont", "do") and (s.at(j) in TO_WORDS or s.at(j) in ("near", "over", "across", "through")):
+        return None  # "don't walk into the bathroom": a negated command, not "don't move"
+    while j < s.n and s.toks[j] not in BOUNDARY:
+        j += 1
+    return [(STOP, "", 0.0, 0.0, 0.0)], j
+
+
 def _verbless(s: ParseState, i: int) -> Result:
     """Clauses with no verb: "about face", "high five!", "forward two metres", "left 90",
     and ellipsis after a connector ("... and the bathroom", "... then right")."""
+    t = s.toks[i]
+    got = _idiom_or_gesture(s, i)
+    if got is not None:
+        return got
+    last = s.last_action
+    if last == NAVIGATE and t in TO_WORDS and t != "for" and i + 1 < s.n:  # "... then to the kitchen"
+        k = i + 1
+        while k < s.n and s.toks[k] in ("the", "your", "my"):
+            k += 1
+        if s.at(k) not in DIRECTIONS:
+            return _another_place(s, i + 1)
+    if last == NAVIGATE and word_value(t) is not None and (num := numbered_place(s.last_place)) and may_end(s, i + 1):
+        return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
+    if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in NUMBER_STARTS or (
+            t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
+        return _another_amount(s, i) if s.first or last in (MOVE, TURN, TURN_AROUND) else None
+    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
+            not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
+        return _another_target(s, i, last)
+    return None
+
+
+def _idiom_or_gesture(s: ParseState, i: int) -> Result:
+    """ "about face", "u-turn"; or a gesture named alone ("high five!", "a hug")."""
     toks, n = s.toks, s.n
-    t = toks[i]
     idiom = s.phrase_at(i, TURN_IDIOMS_BY_FIRST)
     if idiom is not None and may_end(s, i + len(idiom)):
         return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], i + len(idiom)
-    k = i + 1 if t in DETERMINERS and i + 1 < n else i
+    k = i + 1 if toks[i] in DETERMINERS and i + 1 < n else i
     g = s.phrase_at(k, GESTURES_BY_FIRST)
     if g is not None and (len(g) > 1 or g[0] not in ("five", "kiss", "waves", "kisses")) and may_end(s, k + len(g)):
         end = k + len(g)
         while end < n and toks[end] in GESTURE_NOUNS:
             end += 1
         return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], end
-    last = s.last_action
-    if last == NAVIGATE and t in TO_WORDS and t != "for" and i + 1 < n:  # "... then to the kitchen"
-        k = i + 1
-        while k < n and toks[k] in ("the", "your", "my"):
-            k += 1
-        if s.at(k) not in DIRECTIONS:
-            words, j = read_noun_phrase(s, i + 1)
-            target = read_place(s, words)
-            if target is not None and may_end(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
-                return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
-            return None
-    if last == NAVIGATE and word_value(t) is not None and (num := numbered_place(s.last_place)) and may_end(s, i + 1):
-        return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
-    if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in NUMBER_STARTS or (
-            t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
-        if s.first or last in (MOVE, TURN, TURN_AROUND):
-            turnish = last in (TURN, TURN_AROUND)
-            if not turnish and s.first:
-                direction, amount, dim, vague, j = read_motion_terms(s, i)
-                if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
-                    return None  # "right." alone is an acknowledgement as often as a command
-                turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
-                    dim == "" and amount > MAX_BARE_SIDESTEP_M)))  # "left 90": degrees, never 90 m
-            got = read_turn_terms(s, i, "turn") if turnish else read_move(s, i, "move")
-            if got is not None and may_end(s, got[1]):
-                return got
-        return None
-    if last in (NAVIGATE, PICK, FIND) and t not in WH and t not in AUX and (t not in SUBJECTS or t in DETERMINERS) and (
-            not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
-        words, j = read_noun_phrase(s, i)
-        if not words or not may_end(s, j) or any(w in DETERMINERS for w in words[1:]):
-            return None  # "... and close the door": a verb and its object, not a second place
-        target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
-        if target is None:
-            return None
-        return [(last, target, 0.0, 0.0, 0.0)], j
     return None
+
+
+def _another_place(s: ParseState, i: int) -> Result:
+    """ "... then to the kitchen": a place at ``i``, after a walk."""
+    words, j = read_noun_phrase(s, i)
+    target = read_place(s, words)
+    if target is not None and may_end(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
+        return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
+    return None
+
+
+def _another_amount(s: ParseState, i: int) -> Result:
+    """ "... then right", "forward two metres", "left 90": a move or a turn with no verb, first
+    in the command or after a move or a turn (a bare "left 90" is degrees, never 90 m)."""
+    t, last = s.toks[i], s.last_action
+    turnish = last in (TURN, TURN_AROUND)
+    if not turnish and s.first:
+        direction, amount, dim, vague, _ = read_motion_terms(s, i)
+        if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
+            return None  # "right." alone is an acknowledgement as often as a command
+        turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
+            dim == "" and amount > MAX_BARE_SIDESTEP_M)))
+    got = read_turn_terms(s, i, "turn") if turnish else read_move(s, i, "move")
+    return got if got is not None and may_end(s, got[1]) else None
+
+
+def _another_target(s: ParseState, i: int, last: str) -> Result:
+    """ "go to the kitchen and the bathroom", "pick up the cup and the bottle": a second target
+    for the action before."""
+    words, j = read_noun_phrase(s, i)
+    if not words or not may_end(s, j) or any(w in DETERMINERS for w in words[1:]):
+        return None  # "... and close the door": a verb and its object, not a second place
+    target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
+    if target is None:
+        return None
+    return [(last, target, 0.0, 0.0, 0.0)], j
 
 
 def read_topic(s: ParseState, i: int) -> bool:

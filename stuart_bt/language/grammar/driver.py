@@ -37,7 +37,7 @@ from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
 from .clauses import opens_conversation, read_clause, read_connector, read_topic
 from .lexicon import ALL_VERBS, BOUNDARY, COPULA, CORRECTIONS_BY_FIRST, HARD_STOPS, MODALS, NP_STOP, PAST, SUBORDINATORS
 from .nouns import read_arrival
-from .state import Defaults, ParseState, may_end, skip_rest
+from .state import Defaults, ParseState, Spec, may_end, skip_rest
 from .tokens import Tokens, tokenize
 
 
@@ -62,132 +62,178 @@ class Grammar:
 
     def parse_tokens(self, text: str, tokens: Tokens) -> list[TaskIntent]:
         """Like :meth:`parse` on the tokens :func:`tokenize` made of ``text``."""
-        toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
-        s = ParseState(toks, len(toks), self.defaults, self.stop_words, read_clause)
-        n = s.n
-        out: list[TaskIntent] = []
-        i = 0
-        dead = False  # the sentence opened as a question or statement
-        reorder_at: int | None = None  # "X but first Y": Y's intents go before X's
-        correct_at: int | None = None  # "X, no, Y": Y's intents replace X's
-        clause_end = -1  # where the last clause ended: "X after you Y" has no connector between
-        hold = False  # "before you Y, X": Y's intents wait ...
-        held: list[TaskIntent] = []  # ... here until X's are in
-        while i < n:
-            t = toks[i]
-            if t in HARD_STOPS:
-                dead = False
-                i += 1
+        return _CommandReader(self, text, tokens).read()
+
+
+class _CommandReader:
+    """One command read left to right: clauses between connectors, with what the words between
+    them ask for (a correction, a reordering, a clause held until the next one is in)."""
+
+    def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
+        self.text, self.tokens = text, tokens
+        self.toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
+        self.s = ParseState(self.toks, len(self.toks), grammar.defaults, grammar.stop_words, read_clause)
+        self.out: list[TaskIntent] = []
+        self.i = 0
+        self.dead = False  # the sentence opened as a question or statement
+        self.reorder_at: int | None = None  # "X but first Y": Y's intents go before X's
+        self.correct_at: int | None = None  # "X, no, Y": Y's intents replace X's
+        self.clause_end = -1  # where the last clause ended: "X after you Y" has no connector between
+        self.hold = False  # "before you Y, X": Y's intents wait ...
+        self.held: list[TaskIntent] = []  # ... here until X's are in
+
+    def read(self) -> list[TaskIntent]:
+        n = self.s.n
+        while self.i < n:
+            if self._between_clauses() or self._in_conversation():
                 continue
-            if out and not dead and t in CORRECTIONS_BY_FIRST and (c := s.phrase_at(i, CORRECTIONS_BY_FIRST)):
-                correct_at = len(out) - _last_clause_len(out)  # "go to the kitchen, no, the bathroom"
-                i += len(c)
-                continue
-            con = read_connector(s, i)
-            if con is not None:
-                kind, i = con
-                if kind == "or":  # "the kitchen or the bathroom": a choice is not a plan
-                    while i < n and toks[i] not in HARD_STOPS:
-                        i += 1
-                elif kind == "reorder" and out:
-                    reorder_at = len(out) - _last_clause_len(out)
-                continue
-            if dead and toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
-                    t in ("stop", "halt", "freeze") and may_end(s, i + 1))):
-                dead = False  # "I lost my keys, can you help me find them?", "is enough, stop": said to the robot
-            if dead:
-                i += 1
-                continue
-            subordinate = False
-            attached = bool(out) and i == clause_end
-            if t == "before" and i + 1 < n and (toks[i + 1] in ("you", "u") or toks[i + 1] in ALL_VERBS):
-                i += 2 if toks[i + 1] in ("you", "u") else 1
-                hold = not attached  # "before you go, wave": the wave first; "wave before you go": in order
-                if i >= n:
-                    break
-            if t == "as" and s.at(i + 1) == "soon" and s.at(i + 2) == "as" and s.at(i + 3) in (
-                    "you", "youve", "youre", "u"):
-                i += 2
-                t = "once"  # "as soon as you get to the kitchen": like "once you ..."
-            if t in SUBORDINATORS and i + 1 < n and (toks[i + 1] in ("you", "youve", "youre", "u") or (
-                    t == "after" and toks[i + 1] in ALL_VERBS)):
-                # "when you find it, pick it up": the clause says what happens first; it is kept
-                # unless it repeats the intent just before ("look for the bottle and when you
-                # find it ...")
-                perfect = toks[i + 1] == "youve" or t == "once"
-                i += 2 if toks[i + 1] in ("you", "youve", "youre", "u") else 1
-                subordinate = True
-                if t == "after" and attached:  # "go to the kitchen after you wave": the wave first
-                    reorder_at = len(out) - _last_clause_len(out)
-                if i < n and toks[i] == "have" and toks[i - 1] == "you":
-                    i += 1  # "once you have picked up ..."
-                    perfect = True
-                if i >= n:
-                    break
-                if perfect and toks[i] in PAST:
-                    toks[i] = PAST[toks[i]]  # "when you've found it": the verb ("when you went": a story)
-            start = i
-            got = read_arrival(s, i) if subordinate and t != "if" else None
-            if got is None:
-                s.subordinate = subordinate
-                got = read_clause(s, i)
-                s.subordinate = False
-            if got is None:
-                correct_at = reorder_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
-                hold = False
-                if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
-                    i = skip_rest(s, i + 1)
-                    s.first = False
-                    continue
-                if opens_conversation(s, i) and not read_topic(s, i):
-                    dead = True
-                i += 1
-                while i < n and toks[i] not in BOUNDARY:
-                    i += 1
-                s.first = False
-                continue
-            specs, j = got
-            j = max(j, i + 1)
-            if not specs:  # "grab the cup and hand it to me": the handing over adds nothing
-                s.first = False
-                i = clause_end = skip_rest(s, j)
-                continue
-            if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
-                dead = True
-                correct_at = reorder_at = None
-                hold = False
-                i = j
-                continue
-            if subordinate and out and [(it.action, it.target) for it in out[-len(specs):]] == [
-                    (a, tg) for a, tg, *_ in specs]:
-                s.first = False
-                i = skip_rest(s, j)
-                continue
-            a, b = tokens.span(start, min(j, n) - 1)
-            raw = text[a:b]
-            made = [TaskIntent(a, tg, x, y, yaw, raw) for a, tg, x, y, yaw in specs]
-            if hold:
-                held, hold = made, False
-            elif correct_at is not None:
-                out[correct_at:] = made
-                correct_at = None
-            elif reorder_at is not None:
-                out[reorder_at:reorder_at] = made
-                reorder_at = None
-            else:
-                out.extend(made)
-            if held and made is not held:
-                out.extend(held)
-                held = []
-            for act, tg, *_ in specs:
-                if act in (PICK, FIND) and tg not in ("me", "it"):
-                    s.last_object = tg
-                elif act == NAVIGATE:
-                    s.last_place = tg
-            s.last_action = specs[-1][0]
+            opening = self._subordinate_opening()
+            if opening is None:
+                break
+            self._clause(*opening)
+        return _dedupe_stops(self.out + self.held)
+
+    def _between_clauses(self) -> bool:
+        """A sentence end, a correction ("no, ..."), or a connector at ``i``: consumed."""
+        s, toks, t = self.s, self.toks, self.toks[self.i]
+        if t in HARD_STOPS:
+            self.dead = False
+            self.i += 1
+            return True
+        c = s.phrase_at(self.i, CORRECTIONS_BY_FIRST) if self.out and not self.dead else None
+        if c:
+            self.correct_at = len(self.out) - _last_clause_len(self.out)  # "go to the kitchen, no, the bathroom"
+            self.i += len(c)
+            return True
+        con = read_connector(s, self.i)
+        if con is None:
+            return False
+        kind, self.i = con
+        if kind == "or":  # "the kitchen or the bathroom": a choice is not a plan
+            while self.i < s.n and toks[self.i] not in HARD_STOPS:
+                self.i += 1
+        elif kind == "reorder" and self.out:
+            self.reorder_at = len(self.out) - _last_clause_len(self.out)
+        return True
+
+    def _in_conversation(self) -> bool:
+        """Inside a question or a statement: skip its words (a word said to the robot after a
+        comma ends it: "I lost my keys, can you help me find them?", "that's enough, stop")."""
+        s, i, t = self.s, self.i, self.toks[self.i]
+        if self.dead and self.toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
+                t in ("stop", "halt", "freeze") and may_end(s, i + 1))):
+            self.dead = False
+        if self.dead:
+            self.i += 1
+        return self.dead
+
+    def _subordinate_opening(self) -> tuple[str, bool] | None:
+        """Past "before you", "as soon as you", "when/once/after you('ve)": (the opening word,
+        whether a subordinate clause follows); ``None`` when the text ends there."""
+        s, toks, n = self.s, self.toks, self.s.n
+        t = toks[self.i]
+        attached = bool(self.out) and self.i == self.clause_end
+        if t == "before" and self.i + 1 < n and (toks[self.i + 1] in ("you", "u") or toks[self.i + 1] in ALL_VERBS):
+            self.i += 2 if toks[self.i + 1] in ("you", "u") else 1
+            self.hold = not attached  # "before you go, wave": the wave first; "wave before you go": in order
+            if self.i >= n:
+                return None
+        if t == "as" and s.at(self.i + 1) == "soon" and s.at(self.i + 2) == "as" and s.at(self.i + 3) in (
+                "you", "youve", "youre", "u"):
+            self.i += 2
+            t = "once"  # "as soon as you get to the kitchen": like "once you ..."
+        if not (t in SUBORDINATORS and self.i + 1 < n and (toks[self.i + 1] in ("you", "youve", "youre", "u") or (
+                t == "after" and toks[self.i + 1] in ALL_VERBS))):
+            return t, False
+        # "when you find it, pick it up": the clause says what happens first; it is kept unless it
+        # repeats the intent just before ("look for the bottle and when you find it ...")
+        perfect = toks[self.i + 1] == "youve" or t == "once"
+        self.i += 2 if toks[self.i + 1] in ("you", "youve", "youre", "u") else 1
+        if t == "after" and attached:  # "go to the kitchen after you wave": the wave first
+            self.reorder_at = len(self.out) - _last_clause_len(self.out)
+        if self.i < n and toks[self.i] == "have" and toks[self.i - 1] == "you":
+            self.i += 1  # "once you have picked up ..."
+            perfect = True
+        if self.i >= n:
+            return None
+        if perfect and toks[self.i] in PAST:
+            toks[self.i] = PAST[toks[self.i]]  # "when you've found it": the verb ("when you went": a story)
+        return t, True
+
+    def _clause(self, t: str, subordinate: bool) -> None:
+        """Read the clause at ``i`` and put its intents where the words around it say."""
+        s, start = self.s, self.i
+        got = read_arrival(s, start) if subordinate and t != "if" else None
+        if got is None:
+            s.subordinate = subordinate
+            got = read_clause(s, start)
+            s.subordinate = False
+        if got is None:
+            self._no_clause(t, subordinate)
+            return
+        specs, j = got
+        j = max(j, start + 1)
+        if not specs:  # "grab the cup and hand it to me": the handing over adds nothing
             s.first = False
-            i = clause_end = skip_rest(s, j)
-        return _dedupe_stops(out + held)
+            self.i = self.clause_end = skip_rest(s, j)
+            return
+        if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
+            self.dead, self.correct_at, self.reorder_at, self.hold = True, None, None, False
+            self.i = j
+            return
+        if subordinate and self.out and [(it.action, it.target) for it in self.out[-len(specs):]] == [
+                (a, tg) for a, tg, *_ in specs]:
+            s.first = False
+            self.i = skip_rest(s, j)
+            return
+        a, b = self.tokens.span(start, min(j, s.n) - 1)
+        self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
+        self._remember(specs)
+        self.i = self.clause_end = skip_rest(s, j)
+
+    def _no_clause(self, t: str, subordinate: bool) -> None:
+        """No command at ``i``: skip to the next connector; a question or a statement makes the
+        rest of its sentence conversation."""
+        s, toks = self.s, self.toks
+        self.correct_at = self.reorder_at = None  # "go to the kitchen. no need to hurry": nothing to correct with
+        self.hold = False
+        if subordinate and t != "if":  # "when you are ready go to the kitchen": a time, no question
+            self.i = skip_rest(s, self.i + 1)
+            s.first = False
+            return
+        if opens_conversation(s, self.i) and not read_topic(s, self.i):
+            self.dead = True
+        self.i += 1
+        while self.i < s.n and toks[self.i] not in BOUNDARY:
+            self.i += 1
+        s.first = False
+
+    def _place(self, made: list[TaskIntent]) -> None:
+        """Held back, replacing a corrected clause, before a reordered one, or at the end."""
+        if self.hold:
+            self.held, self.hold = made, False
+        elif self.correct_at is not None:
+            self.out[self.correct_at:] = made
+            self.correct_at = None
+        elif self.reorder_at is not None:
+            self.out[self.reorder_at:self.reorder_at] = made
+            self.reorder_at = None
+        else:
+            self.out.extend(made)
+        if self.held and made is not self.held:
+            self.out.extend(self.held)
+            self.held = []
+
+    def _remember(self, specs: list[Spec]) -> None:
+        """What "it", "there" and an ellipsis refer to from now on."""
+        s = self.s
+        for act, tg, *_ in specs:
+            if act in (PICK, FIND) and tg not in ("me", "it"):
+                s.last_object = tg
+            elif act == NAVIGATE:
+                s.last_place = tg
+        s.last_action = specs[-1][0]
+        s.first = False
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

@@ -413,3 +413,32 @@ CORRECTIONS: tuple[tuple[str, ...], ...] = (
 )
 
 CORRECTIONS_BY_FIRST = by_first(sorted(CORRECTIONS, key=lambda c: (-len(c), c)))
+
+# stop verbs that stop only with one of these words next ("hold on", "cut it out", "never mind";
+# "" is the end of the text); the rest stop whatever follows
+STOP_VERB_NEEDS: dict[str, frozenset[str]] = {
+    "stand": frozenset({"still", "there", "by", "put", "here", "fast", "your", "right", "at", "in", "near", "beside",
+                        "inside"}),
+    "never": frozenset({"mind"}),
+    "forget": frozenset({"it", "that", "about", "everything", "this"}),
+    "cut": frozenset({"it", "that", "out"}),
+    **dict.fromkeys(("hang", "hold"), frozenset({"on", "it", "up", "still", "your", "position", "tight", "off",
+                                                 "everything", "there"})),
+    **dict.fromkeys(("end", "terminate", "kill", "interrupt"), frozenset({"it", "that", "the", "this", "everything",
+                                                                           "mission", "task", "now", "all"})),
+    "break": frozenset({"off"}),
+    "chill": frozenset({"out", ""}),
+    "e": frozenset({"stop"}),
+    "emergency": frozenset({"stop", "halt", "brake", ""}),
+    "quit": frozenset({"it", "that", "moving", "move", "now", "", "please"}),
+}
+
+# gesture verbs that name their gesture whatever follows ("wave at them", "give a clap")
+GESTURE_VERB_NAMES: dict[str, str] = {"wave": "wave", "greet": "wave", "clap": "clap", "applaud": "clap", "hug": "hug",
+                                      "cuddle": "hug", "embrace": "hug", "reject": "reject"}
+
+# words after "get" that make it no "get the object": "get going", "get ready", "get to the
+# kitchen" (a walk), "get over it"; "get a cup", "get it", "get some water" still are
+GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out", "ready", "closer", "away", "lost",
+                            "along", "on", "off", "in", "inside", "started", "here", "over", "there", "a", "an", "rid",
+                            "it", "real", "better", "well", "some", "dressed", "to", "back", "home"})
