@@ -8,7 +8,8 @@ from functools import lru_cache
 from importlib.resources import files
 from pathlib import Path
 
-from stuart_bt.htn.domain import Domain, load_domain
+from stuart_bt.htn.domain import Domain
+from stuart_bt.htn.load import load_domain
 
 PROJECT_DOMAIN = "domain.yaml"
 

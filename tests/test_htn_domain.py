@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from stuart_bt.htn import DomainLoadError, HookRegistry, TaskArgumentError, TaskCall, load_domain, load_domain_text
-from stuart_bt.htn.domain import PrimitiveDef, TaskDef, parse_task_text
+from stuart_bt.htn.domain import PrimitiveDef, TaskDef
+from stuart_bt.htn.values import parse_task_text
 
 
 def errors_of(text: str, hooks: HookRegistry | None = None) -> list[str]:

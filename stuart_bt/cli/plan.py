@@ -66,7 +66,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
 
 
 def _domain(path: str | None) -> Any:
-    from ..htn.domain import load_domain
+    from ..htn.load import load_domain
     from ..tasks import project_domain
     from ..tree.errors import TreeLoadError
 
@@ -105,8 +105,8 @@ def _tasks(text: str, domain: Any) -> Any:
 
 def _plan_or_explain_why_not(planner: Any, tasks: Any, state: Any, args: argparse.Namespace) -> Any:
     """The plan, or ``None`` after saying why there is none (and what was planned so far)."""
-    from ..htn.domain import TaskArgumentError
     from ..htn.plan import PlanningBudgetExceeded, PlanningFailed
+    from ..htn.values import TaskArgumentError
 
     try:
         return planner.plan(tasks, state)

@@ -13,20 +13,14 @@
 See docs/htn.md for the domain language and the semantics.
 """
 
-from .domain import (
-    Domain,
-    DomainLoadError,
-    TaskArgumentError,
-    TaskCall,
-    load_domain,
-    load_domain_text,
-    parse_task_text,
-)
+from .domain import Domain
 from .explain import explain, render_tree
 from .hooks import Hook, HookRegistry
+from .load import DomainLoadError, load_domain, load_domain_text
 from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, PlanningFailed, PlanStats, TaskNode
 from .planner import Planner
 from .state import State, lab_world
+from .values import TaskArgumentError, TaskCall, parse_task_text
 
 __all__ = [
     "Domain", "DomainLoadError", "Failure", "Hook", "HookRegistry", "MethodAttempt", "Plan", "PlanStats", "Planner",

@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .domain import format_value, short
 from .plan import Plan, PlanningFailed, TaskNode
+from .values import format_value, short
 
 MAX_INDENT = 40  # deeper levels are drawn at this indentation, marked with their depth
 UNICODE = {"tee": "├─ ", "last": "└─ ", "pipe": "│  ", "gap": "   ", "no": "✗", "to": "→", "then": "⇒"}

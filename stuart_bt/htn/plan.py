@@ -19,8 +19,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from ..core.errors import StuartError
-from .domain import ClauseFailure, format_value
+from .expressions import ClauseFailure
 from .state import State, jsonable
+from .values import format_value
 
 if TYPE_CHECKING:
     from ..tree.spec import Location

@@ -37,17 +37,13 @@ from .domain import (
     PrimitiveDef,
     RunTemplate,
     Subtask,
-    TaskArgumentError,
-    TaskCall,
     TaskDef,
-    check_all,
     check_skill_args,
-    format_value,
-    make_lookup,
-    render_template,
 )
+from .expressions import check_all, make_lookup, render_template
 from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, PlanningFailed, PlanStats, TaskNode
 from .state import State
+from .values import TaskArgumentError, TaskCall, format_value
 
 TaskInput = str | TaskCall | Mapping[str, Any] | Sequence[Any]
 DEFAULT_MAX_EXPANSIONS = 500_000

@@ -41,8 +41,9 @@ from py_trees.common import Status
 
 from ..conversation.reply import Conversation
 from ..htn import Planner, PlanningBudgetExceeded, PlanningFailed, TaskArgumentError, TaskNode
-from ..htn.domain import Domain, TaskCall
+from ..htn.domain import Domain
 from ..htn.state import lab_world
+from ..htn.values import TaskCall
 from ..language import Parser, Resolver, TaskIntent
 from ..leaves import failure_code
 from ..run.executor import Executor, RunOutcome
