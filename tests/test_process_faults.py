@@ -90,7 +90,8 @@ def kill_and_time_the_orphans(pid: int) -> float:
     return time.monotonic() - killed
 
 
-def post(served: Served, path: str, body: dict[str, Any] | None = None) -> tuple[int, dict[str, Any]]:
+def call(served: Served, path: str, body: dict[str, Any] | None = None) -> tuple[int, dict[str, Any]]:
+    """POST ``body`` to ``path`` (GET without one); the status and the JSON answer."""
     conn = http.client.HTTPConnection("127.0.0.1", served.port, timeout=30)
     try:
         conn.request("POST" if body is not None else "GET", path, body=json.dumps(body) if body is not None else None,
@@ -105,15 +106,15 @@ def test_a_web_server_frozen_mid_walk_leaves_a_stopped_robot_that_waits_for_cont
         tmp_path):
     log = tmp_path / "serve.jsonl"
     with Served("--mission", "--no-wake", "--log", str(log)) as served:
-        assert post(served, "/api/say", {"text": WALK})[0] == 200
+        assert call(served, "/api/say", {"text": WALK})[0] == 200
         wait_until(lambda: walked(log_events(log)), 60, "the walk to start")
         woke = freeze(served.proc.pid)
         hold = wait_until(lambda: watchdog_hold(log_events(log)), 30, "the mission to be held")
         wait_until(lambda: said(log_events(log), WATCHDOG_SENTENCE), 30, "the robot to say why it stopped")
-        status, state = post(served, "/api/state")
+        status, state = call(served, "/api/state")
         time.sleep(1.0)  # a second awake and held: nothing may move
         still = set(poses_after(log_events(log), hold["wall"]))
-        assert post(served, "/api/continue", {})[0] == 200
+        assert call(served, "/api/continue", {})[0] == 200
         moved_on = wait_until(lambda: set(poses_after(log_events(log), hold["wall"])) - still, 30,
                               "the walk to carry on after continue")
         gone_in = kill_and_time_the_orphans(served.proc.pid)

@@ -87,6 +87,7 @@ class Leaf(py_trees.behaviour.Behaviour):
         self.ctx = ctx
         self.leaf_spec: LeafSpec = LEAVES[spec.kind]
         self.failure_reason = ""
+        self.failure_code: str | None = None  # the daemon's error code, when a daemon failed the leaf
         self.result: dict[str, Any] = {}
         self._started_at = 0.0
         self._early: Status | None = None
@@ -118,6 +119,7 @@ class Leaf(py_trees.behaviour.Behaviour):
     # -- py_trees lifecycle -------------------------------------------------------------------
     def initialise(self) -> None:
         self.failure_reason = ""
+        self.failure_code = None
         self.result = {}
         self._early = None
         self._started_at = self.ctx.clock.now()
@@ -167,7 +169,8 @@ class Leaf(py_trees.behaviour.Behaviour):
     def _record(self, status: Status) -> None:
         outcome = status.value
         bb = self.ctx.blackboard
-        entry = {"status": outcome, "reason": self.failure_reason or None, "result": self.result or None}
+        entry = {"status": outcome, "reason": self.failure_reason or None, "code": self.failure_code,
+                 "result": self.result or None}
         outcomes = bb.get("outcomes", None)
         if outcomes is None:
             outcomes = {}
@@ -225,7 +228,7 @@ class SkillLeaf(Leaf):
                 return Status.RUNNING
         request = self.request
         if request.status == "error":
-            code = request.error_code or "error"
+            code = self.failure_code = request.error_code or "error"
             self.failure_reason = f"{code}: {request.reason}" if request.reason else code
             return Status.FAILURE
         if request.status == "done":

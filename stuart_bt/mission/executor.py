@@ -541,8 +541,9 @@ class MissionExecutor:
                 self._hold(m, outcome, outcome.reason)
                 return
             reason = self._failure_reason(failed_path, outcome)
-            if failure_code(reason) == "watchdog":  # this process froze and a daemon stopped the robot:
-                self._hold(m, outcome, reason)  # it moves again only when told to continue
+            if self._leaf_outcome(failed_path).get("code") == "watchdog":
+                # this process froze and a daemon stopped the robot: it moves again only when told to
+                self._hold(m, outcome, reason)
                 if self.halted is m:
                     self._say(WATCHDOG_SENTENCE)
                 return
@@ -642,9 +643,8 @@ class MissionExecutor:
     def _forget_misplaced(self, task: TaskNode, failed_path: str) -> None:
         """A pick or find that failed because the object was not there: forget where it was, so
         the re-plan looks for it."""
-        reason = self._leaf_reason(failed_path) or ""
         label = (task.skill_args or {}).get("object")
-        if task.skill in ("pick", "find") and label and failure_code(reason) in OBJECT_FAULTS:
+        if task.skill in ("pick", "find") and label and self._leaf_outcome(failed_path).get("code") in OBJECT_FAULTS:
             self.world.objects.pop(label, None)
 
     # -- running one tree ---------------------------------------------------------------------------
@@ -691,10 +691,13 @@ class MissionExecutor:
         if text is not None:
             tts.request("say", {"text": text}, path="reply")
 
-    def _leaf_reason(self, path: str | None) -> str | None:
+    def _leaf_outcome(self, path: str | None) -> dict[str, Any]:
+        """What the leaf at ``path`` recorded last: status, reason, the daemon's error code, result."""
         outcomes = self.session.blackboard.get("outcomes", None) or {}
-        entry = outcomes.get(path) if path else None
-        return entry.get("reason") if entry else None
+        return (outcomes.get(path) if path else None) or {}
+
+    def _leaf_reason(self, path: str | None) -> str | None:
+        return self._leaf_outcome(path).get("reason")
 
     def _failure_reason(self, path: str | None, outcome: RunOutcome) -> str:
         return self._leaf_reason(path) or outcome.reason or "something went wrong"
