@@ -20,7 +20,7 @@ def package_view(root: Path) -> Path:
     view = root / "stuart_bt"
     view.mkdir()
     for entry in (REPO / "stuart_bt").iterdir():
-        if entry.name != "__pycache__":
+        if entry.name != "__pycache__" and entry.name not in MAPPED:  # a checkout may link them already
             (view / entry.name).symlink_to(entry)
     for name in MAPPED:
         (view / name).symlink_to(REPO / name)

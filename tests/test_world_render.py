@@ -42,8 +42,8 @@ def test_head_camera_depth_at_a_known_object(world, tmp_path):
     # Project the middle of the book's top face into the image; the depth there is its z in
     # the optical frame.
     top = book + [0.0, 0.0, BOOK_HALF_HEIGHT]
-    position = np.array(reply["pose"]["position"])
-    rotation = np.array(reply["pose"]["rotation"])
+    position = np.array(reply["camera_pose"]["position"])
+    rotation = np.array(reply["camera_pose"]["rotation"])
     x, y, z = rotation.T @ (top - position)
     u, v = k["fx"] * x / z + k["cx"], k["fy"] * y / z + k["cy"]
     assert 0 <= u < 320 and 0 <= v < 240, (u, v)

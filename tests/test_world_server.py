@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.daemon.protocol import WORLD_CODES, check_daemon_message
 from stuart_bt.sim.world.client import WorldClient, WorldError, launch_world
 from stuart_bt.sim.world.scene import default_robot_path
 
@@ -56,7 +57,7 @@ def test_errors_are_replies_not_crashes(world):
     assert world.call("ping")["t"] >= 0.0  # still serving
 
 
-def test_raw_protocol_and_several_clients(world):
+def test_the_world_speaks_the_daemons_line_protocol_to_several_clients(world):
     clients = [WorldClient(world.socket_path) for _ in range(3)]
     try:
         times = [c.call("state")["t"] for c in clients]
@@ -66,14 +67,26 @@ def test_raw_protocol_and_several_clients(world):
             c.close()
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as raw:
         raw.connect(str(world.socket_path))
-        raw.sendall(b'{"id": "a", "cmd": "ping"}\nnot json\n{"id": 7, "cmd": "ping", "args": {}}\n')
+        raw.sendall(b'{"id": "a", "cmd": "ping"}\nnot json\n{"id": 7, "cmd": "ping", "args": {}}\n'
+                    b'{"id": "b", "cmd": "pnig"}\n{"id": "c", "cmd": "ping", "args": []}\n')
         buffer = b""
-        while buffer.count(b"\n") < 3:
+        while buffer.count(b"\n") < 5:
             buffer += raw.recv(65536)
-        replies = [json.loads(line) for line in buffer.splitlines()]
-    assert replies[0]["id"] == "a" and replies[0]["ok"] is True
-    assert replies[1]["ok"] is False and replies[1]["error"] == "bad_request"
-    assert replies[2]["id"] == 7 and replies[2]["ok"] is True
+        replies = [check_daemon_message(json.loads(line)) for line in buffer.splitlines()]
+    assert replies[0]["id"] == "a" and replies[0]["type"] == "done" and replies[0]["result"]["t"] >= 0
+    assert [r["type"] for r in replies[1:]] == ["error"] * 4
+    assert {r["code"] for r in replies[1:]} <= set(WORLD_CODES)
+    assert (replies[1]["id"], replies[1]["code"]) == (None, "bad_request")
+    assert (replies[2]["id"], replies[2]["code"]) == (None, "bad_request") and "'id'" in replies[2]["reason"]
+    assert (replies[3]["id"], replies[3]["code"]) == ("b", "unknown_command") and "ping" in replies[3]["reason"]
+    assert (replies[4]["id"], replies[4]["code"]) == ("c", "bad_request") and "'args'" in replies[4]["reason"]
+
+
+def test_the_ready_line_is_a_daemon_ready_line_with_the_world_s_details(world):
+    ready = check_daemon_message(world.ready)
+    assert (ready["type"], ready["family"], ready["pid"]) == ("ready", "world", world.pid)
+    assert {"ping", "state", "base_path", "render", "shutdown"} <= set(ready["commands"])
+    assert ready["socket"] == str(world.socket_path) and ready["timestep"] > 0
 
 
 def _wait_exit(proc: subprocess.Popen, timeout: float = 10.0) -> int:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import contextlib
 import itertools
-import json
 import os
 import select
 import shutil
@@ -25,7 +24,8 @@ import time
 from pathlib import Path
 from typing import IO, Any
 
-from stuart_bt.core.jsonfile import to_json
+from stuart_bt.daemon import protocol
+from stuart_bt.daemon.protocol import ProtocolError
 
 from .clock import SimClock, default_clock_path
 from .errors import WorldError
@@ -61,10 +61,9 @@ class WorldClient:
     def call(self, cmd: str, **args: Any) -> dict[str, Any]:
         """Send one request and wait for its reply; raises :class:`WorldError` on refusal."""
         with self._lock:
-            request_id = next(self._ids)
-            line = to_json({"id": request_id, "cmd": cmd, "args": args}, separators=(",", ":")) + "\n"
+            request_id = f"w{next(self._ids)}"
             try:
-                self._sock.sendall(line.encode())
+                self._sock.sendall(protocol.encode(protocol.request(request_id, cmd, args)))
             except OSError as e:
                 raise WorldError("disconnected", f"world at {self.socket_path}: {e}") from None
             deadline = time.monotonic() + self.timeout
@@ -72,11 +71,14 @@ class WorldClient:
                 reply = self._next_message(deadline)
                 if reply.get("id") != request_id:
                     continue  # a stale reply to an earlier request that timed out
-                if reply.get("ok"):
+                if reply["type"] == protocol.DONE:
                     return reply.get("result") or {}
-                raise WorldError(str(reply.get("error", "internal")), str(reply.get("reason", "")))
+                if reply["type"] == protocol.ERROR:
+                    raise WorldError(reply["code"], reply["reason"])
+                raise WorldError("backend_error", f"the world answered {cmd} with a {reply['type']!r} line")
 
     def _next_message(self, deadline: float) -> dict[str, Any]:
+        """The next line from the world, through the same gate and schema as a daemon's line."""
         while b"\n" not in self._buffer:
             remaining = deadline - time.monotonic()
             if remaining <= 0:
@@ -92,7 +94,10 @@ class WorldClient:
                 raise WorldError("disconnected", f"the world at {self.socket_path} closed the connection")
             self._buffer += chunk
         line, self._buffer = self._buffer.split(b"\n", 1)
-        return json.loads(line)
+        try:
+            return protocol.check_daemon_message(protocol.decode(line))
+        except ProtocolError as e:
+            raise WorldError("backend_error", f"the world sent a malformed line: {e.reason}") from None
 
     def close(self) -> None:
         with contextlib.suppress(OSError):
@@ -252,7 +257,10 @@ def _wait_ready(proc: subprocess.Popen[bytes], timeout: float) -> dict[str, Any]
             raise WorldError("start_failed", f"the world exited (code {code}) before it was ready; see its stderr")
         buffer += chunk
     proc.stdout.close()  # nothing else comes on stdout
-    message = json.loads(buffer.split(b"\n", 1)[0])
-    if message.get("type") != "ready":
-        raise WorldError("start_failed", f"unexpected first line from the world: {message!r}")
+    try:
+        message = protocol.check_daemon_message(protocol.decode(buffer.split(b"\n", 1)[0]))
+    except ProtocolError as e:
+        raise WorldError("start_failed", f"the world's first line is not protocol: {e.reason}") from None
+    if message["type"] != protocol.READY:
+        raise WorldError("start_failed", f"the world's first line is a {message['type']!r} line, not ready")
     return message

@@ -38,7 +38,8 @@ import numpy as np
 from stuart_bt.core.errors import CodedError
 from stuart_bt.core.jsonfile import is_finite_number, to_json
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.protocol import MAX_LINE, LineBuffer, Oversize, ProtocolError, decode, encode
+from stuart_bt.daemon import protocol
+from stuart_bt.daemon.protocol import MAX_LINE, LineBuffer, Oversize, ProtocolError
 
 from .arms import SIDES, Hands, JointPlayer
 from .base import BaseController, BaseLimits, PersonCheck, wrap
@@ -425,7 +426,7 @@ class World:
         result: dict[str, Any] = {"t": _r(self.t), "camera": camera, "width": width, "height": height,
                                   "path": str(path), "depth_path": None,
                                   "intrinsics": {k: _r(v, 4) for k, v in frame.intrinsics.items()},
-                                  "pose": frame.pose, "base": self.localised_base()}
+                                  "camera_pose": frame.pose, "base": self.localised_base()}
         if frame.depth is not None:
             depth_path.parent.mkdir(parents=True, exist_ok=True)
             np.save(depth_path, frame.depth)
@@ -669,34 +670,29 @@ class Server:
                 return
 
     def _answer(self, line: bytes | Oversize) -> dict[str, Any]:
+        """One request line -> its reply, in the daemons' shape (docs/protocol.md): ``done`` with
+        the result, or ``error`` with a code from the shared table. Nothing a client sends can
+        take the world down."""
         if isinstance(line, Oversize):
-            return {"id": None, "ok": False, "error": "bad_request",
-                    "reason": f"line of {line.size}+ bytes is too long"}
-        request_id: Any = None
+            return protocol.error(None, "bad_request", f"line of {line.size}+ bytes is too long")
+        request_id: str | None = None
         try:
-            message = decode(line)
-            request_id = message.get("id")
-            cmd = message.get("cmd")
-            args = message.get("args") or {}
-            if not isinstance(cmd, str) or not cmd:
-                raise WorldError("bad_request", "a request needs a string 'cmd'")
-            if not isinstance(args, dict):
-                raise WorldError("bad_request", f"'args' must be an object, got {type(args).__name__}")
-            result = self.world.handle(cmd, args)
-            return {"id": request_id, "ok": True, "result": result}
+            message = protocol.decode(line)
+            request_id, cmd, args = protocol.parse_request(message)
+            return protocol.done(request_id, self.world.handle(cmd, args))
         except ProtocolError as e:
-            return {"id": request_id, "ok": False, "error": "bad_request", "reason": e.reason}
+            return protocol.error(e.request_id, "bad_request", e.reason)
         except CodedError as e:  # a WorldError, or an argument check shared with the daemons
-            return {"id": request_id, "ok": False, "error": e.code, "reason": e.reason}
+            return protocol.error(request_id, e.code, e.reason)
         except Exception as e:  # noqa: BLE001 - a bug must not take the world down: report it, keep running
             traceback.print_exc()
-            return {"id": request_id, "ok": False, "error": "internal", "reason": f"{type(e).__name__}: {e}"}
+            return protocol.error(request_id, "backend_error", f"{type(e).__name__}: {e}")
 
     def _send(self, client: _Client, message: dict[str, Any]) -> None:
         try:
-            client.out += encode(message)
+            client.out += protocol.encode(message)
         except ValueError as e:  # NaN or the like in a result
-            client.out += encode({"id": message.get("id"), "ok": False, "error": "internal", "reason": str(e)})
+            client.out += protocol.encode(protocol.error(message.get("id"), "backend_error", str(e)))
         self._flush(client)
 
     def _flush(self, client: _Client) -> None:
@@ -818,9 +814,10 @@ def main(argv: list[str] | None = None) -> int:
                         out_fd=out_fd, hold=options.hold)
         if options.record:
             world.start_recording(options.record, options.record_fps)
-        ready = {"type": "ready", "socket": options.socket, "clock": options.clock, "timestep": world.dt,
-                 "pid": os.getpid(), "scene": world.scene_name, "robot": str(scene.robot_path),
-                 "objects": sorted(scene.objects), "speed": speed}
+        ready = {**protocol.ready("world", "mujoco", os.getpid(), sorted(world.commands)),
+                 "socket": options.socket, "clock": options.clock, "timestep": world.dt,
+                 "scene": world.scene_name, "robot": str(scene.robot_path), "objects": sorted(scene.objects),
+                 "speed": speed}
         os.write(out_fd, (to_json(ready) + "\n").encode())
         print(f"world: ready on {options.socket} (clock {options.clock}, dt {world.dt:g} s, pid {os.getpid()})",
               file=sys.stderr)

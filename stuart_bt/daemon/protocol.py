@@ -37,8 +37,10 @@ STATE = "state"
 SHUTDOWN = "shutdown"
 BUILTIN_COMMANDS = (PING, STOP, CANCEL, STATE, SHUTDOWN)
 
-# Error codes. The daemon sends the first group; the framework sets the last group itself
-# when a daemon cannot answer any more.
+# Error codes: one table for both line protocols that speak this shape, the daemons' (stdin and
+# stdout) and the world server's (its socket). A daemon sends the first group; the framework sets
+# the daemon_* group itself when a daemon cannot answer any more; the world server answers with
+# WORLD_CODES (two of them only it uses); a client that cannot reach a server sets CLIENT_CODES.
 ERROR_CODES: dict[str, str] = {
     "bad_request": "the line or its arguments are malformed; the reason says what",
     "unknown_command": "the daemon has no such command; the reason may suggest one",
@@ -57,8 +59,15 @@ ERROR_CODES: dict[str, str] = {
     "daemon_hung": "framework side: the daemon stopped sending heartbeats or answering commands",
     "daemon_faulty": "framework side: the daemon flooded its output with lines that are not protocol",
     "daemon_down": "framework side: the daemon is not running (restarting or shut down)",
+    "out_of_range": "the world server: a value is outside the robot's limits (a joint target); nothing moved",
+    "busy": "the world server: an earlier request holds the resource (already recording to that file)",
+    "disconnected": "client side: the server could not be reached, or closed the connection",
+    "timeout": "client side: no reply came within the client's timeout",
+    "start_failed": "client side: the server process exited before it was ready",
 }
 FRAMEWORK_CODES = ("daemon_died", "daemon_hung", "daemon_faulty", "daemon_down")
+WORLD_CODES = ("bad_request", "unknown_command", "not_found", "out_of_range", "busy", "backend_error")
+CLIENT_CODES = ("disconnected", "timeout", "start_failed")
 LOG_LEVELS = ("debug", "info", "warning", "error")
 
 
