@@ -1,7 +1,8 @@
 """The command grammar, one module per job (bottom first): :mod:`.lexicon` (the words, as data),
 :mod:`.tokens` (text to tokens), :mod:`.state` (one parse's state), :mod:`.nouns` and
-:mod:`.amounts` (noun phrases, distances and angles), :mod:`.verbs` (one reader per verb
-family), :mod:`.clauses` (openers, verbless clauses, connectors) and :mod:`.driver` (the
+:mod:`.amounts` (noun phrases, distances and angles), one reader module per verb family
+(:mod:`.gestures`, :mod:`.finding`, :mod:`.stopping`, :mod:`.motion`, :mod:`.picking`,
+:mod:`.light_verbs`), :mod:`.clauses` (openers, verbless clauses, connectors) and :mod:`.driver` (the
 :class:`Grammar` that reads a whole command). See :mod:`.driver` for what the grammar accepts
 and why it is rule-based."""
 

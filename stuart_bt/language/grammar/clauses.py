@@ -10,6 +10,8 @@ from collections.abc import Callable
 from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND
 from ..numbers import ANGLE, word_value
 from .amounts import MAX_BARE_SIDESTEP_M, NUMBER_STARTS, read_motion_terms, read_move, read_turn_terms
+from .finding import read_find, read_find_noun
+from .gestures import read_gesture, skip_gesture_tail
 from .lexicon import (
     ALL_VERBS,
     AUX,
@@ -47,22 +49,12 @@ from .lexicon import (
     WH,
     WISH_QUESTIONS_BY_FIRST,
 )
+from .light_verbs import read_do
+from .motion import VISIT_VERBS, read_guide, read_motion, read_turn, read_visit_by
 from .nouns import numbered_place, read_noun_phrase, read_object, read_place
-from .state import ParseState, Result, may_end
-from .verbs import (
-    VISIT_VERBS,
-    read_do,
-    read_find,
-    read_find_noun,
-    read_gesture,
-    read_guide,
-    read_motion,
-    read_pick,
-    read_stop,
-    read_turn,
-    read_visit_by,
-    skip_gesture_tail,
-)
+from .picking import read_pick
+from .state import ParseState, Reader, Result, may_end
+from .stopping import read_stop
 
 
 def _family(verb: str) -> Callable[[ParseState, int], Result] | None:
@@ -74,6 +66,13 @@ for _verbs, _reader in ((MOTION_VERBS, read_motion), (TURN_VERBS, read_turn), (P
                         (FIND_VERBS, read_find), (STOP_VERBS, read_stop), (GESTURE_VERBS, read_gesture),
                         (LIGHT_VERBS, read_do)):
     _DISPATCH.update(dict.fromkeys(_verbs, _reader))
+
+# Each family by name, for a verb one family reads as another's (ParseState.read_as): wired here,
+# above every family module, so that no family imports one that imports it.
+FAMILY_READERS: dict[str, Reader] = {
+    "motion": read_motion, "turn": read_turn, "pick": read_pick, "find": read_find, "stop": read_stop,
+    "gesture": read_gesture, "light_verbs": read_do,
+}
 
 _DISPATCH["get"] = read_motion  # "get to the kitchen" / "get me a cup" (it hands over to read_pick)
 

@@ -34,7 +34,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
-from .clauses import opens_conversation, read_clause, read_connector, read_topic
+from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
 from .lexicon import ALL_VERBS, BOUNDARY, COPULA, CORRECTIONS_BY_FIRST, HARD_STOPS, MODALS, NP_STOP, PAST, SUBORDINATORS
 from .nouns import read_arrival
 from .state import Defaults, ParseState, Spec, may_end, skip_rest
@@ -72,7 +72,8 @@ class _CommandReader:
     def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
         self.text, self.tokens = text, tokens
         self.toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
-        self.s = ParseState(self.toks, len(self.toks), grammar.defaults, grammar.stop_words, read_clause)
+        self.s = ParseState(self.toks, len(self.toks), grammar.defaults, grammar.stop_words, read_clause,
+                            FAMILY_READERS)
         self.out: list[TaskIntent] = []
         self.i = 0
         self.dead = False  # the sentence opened as a question or statement

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from ..numbers import STEP_M
 from .lexicon import (
@@ -20,6 +21,14 @@ from .lexicon import (
 Spec = tuple[str, str, float, float, float]  # (action, target, x, y, yaw): an intent without raw_text
 
 Result = tuple[list[Spec], int] | None
+Reader = Callable[["ParseState", int], Result]  # reads from a position: what it found, and where it stopped
+
+
+class Found(NamedTuple):
+    """A reader's opening words already made the whole reading (or showed it is none: ``None``),
+    as opposed to a position to read on from."""
+
+    result: Result
 
 
 @dataclass(frozen=True)
@@ -44,13 +53,20 @@ class ParseState:
     n: int
     defaults: Defaults
     stop_words: frozenset[str]
-    read_clause: Callable[[ParseState, int], Result]  # for a verb that leads into another ("go and get ...")
+    read_clause: Reader  # for a verb that leads into another ("go and get ...")
+    readers: Mapping[str, Reader] = field(default_factory=dict)  # verb family -> its reader, see read_as
     last_action: str = ""
     last_object: str = ""
     last_place: str = ""
     topic: str = ""  # a bare noun phrase said before the command ("the kitchen, go there")
     first: bool = True
     subordinate: bool = False  # reading "when you ...": "you" is the subject, so no ellipsis
+
+    def read_as(self, family: str, i: int) -> Result:
+        """Read the verb at ``i`` as another family's ("get the cup" is a pick, "make a U-turn" a
+        light verb). The families are wired together here, by the clause reader, so that a
+        family's module need not import a family that imports it."""
+        return self.readers[family](self, i)
 
     def at(self, i: int) -> str:
         return self.toks[i] if i < self.n else ""

@@ -1,0 +1,42 @@
+"""The stop family: "stop", "halt", "freeze", "stop moving", "that's enough". A stop reads its
+verb and the words that only say more about stopping.
+"""
+
+from __future__ import annotations
+
+from ..intents import NAVIGATE, STOP
+from .lexicon import (
+    BOUNDARY,
+    STOP_VERB_NEEDS,
+    STRONG_VERBS,
+    SURFACES,
+)
+from .nouns import read_noun_phrase, read_place
+from .state import ParseState, Result, skip_rest
+
+
+def read_stop(s: ParseState, i: int) -> Result:
+    """stop / halt / freeze / wait / stay / hold on / never mind ...: stop. Reads to the next
+    connector ("stop what you are doing and turn around")."""
+    toks, n = s.toks, s.n
+    verb = toks[i]
+    j = i + 1
+    nxt = s.at(j)
+    needs = STOP_VERB_NEEDS.get(verb)
+    if needs is not None and nxt not in needs:
+        return None  # "stand in line", "never again", "cut the cake": not a stop
+    if verb in ("stop", "halt") and nxt in ("me", "us", "him", "her", "them", "everyone", "everybody", "people"):
+        return None  # "stop me if you've heard this one": someone else is stopped
+    if verb in ("wait", "stay", "stand") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
+            j + 1) in ("the", "your", "my", "our", "station"):
+        words, e = read_noun_phrase(s, j + 1)  # "wait at the entrance": go there, then stay
+        place = read_place(s, words)
+        if place is not None and words[-1] not in SURFACES:
+            return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], skip_rest(s, e)
+    if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
+        return None  # "stand in line"
+    while j < n and toks[j] not in BOUNDARY:
+        if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
+            break
+        j += 1
+    return [(STOP, "", 0.0, 0.0, 0.0)], j
