@@ -20,6 +20,7 @@ MAPPED = {"skills": "stuart_bt.skills", "sim": "stuart_bt.sim", "tasks": "stuart
 # Bottom first: a part may import itself and the parts above it in this list, never one below.
 LAYERS = (
     "core",          # clock, events, blackboard, world state, expressions, catalogue, errors, JSON files
+    "maps",          # occupancy grid, inflation, A* paths, map and marker files (core and numpy only)
     "daemon",        # the line protocol, the supervisor, the daemon client
     "tree",          # YAML trees: loading, checking, building, drawing
     "language",      # wake filter, numbers, the grammar, resolving names

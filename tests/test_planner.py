@@ -1,4 +1,4 @@
-"""Global planner: A* on an occupancy grid with line-of-sight smoothing."""
+"""Global planner (stuart_bt.maps): A* on an occupancy grid with line-of-sight smoothing."""
 
 from __future__ import annotations
 
@@ -7,7 +7,8 @@ from itertools import pairwise
 import numpy as np
 import pytest
 
-from stuart_bt.skills.loco.planner import Grid, PlanningError, path_length, plan
+from stuart_bt.maps.grid import Grid
+from stuart_bt.maps.paths import PlanningError, path_length, plan
 
 
 def room_with_wall() -> Grid:

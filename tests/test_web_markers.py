@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from stuart_bt.core.world import load_markers
+from stuart_bt.maps.markers import load_markers
 from stuart_bt.web.mapfile import MapFile, default_map
 from stuart_bt.web.markers import MarkerConflict, MarkerEditError, MarkerStore
 

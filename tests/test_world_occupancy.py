@@ -9,19 +9,16 @@ import mujoco
 import numpy as np
 import pytest
 
-from stuart_bt.sim.world.occupancy import (
-    OccupancyGrid,
-    clearance,
-    draw_map_png,
-    load_markers,
-    scene_grid,
-    static_footprints,
-)
+from stuart_bt.maps.files import read_map, write_map
+from stuart_bt.maps.grid import OccupancyGrid
+from stuart_bt.maps.markers import load_markers
+from stuart_bt.maps.picture import draw_map_png
+from stuart_bt.sim.world.occupancy import clearance, grid_from_model, scene_grid, static_footprints
 from stuart_bt.sim.world.scene import MAPS_DIR, build_scene, default_robot_path, scene_path
 
 STANDIN = Path(__file__).parent / "data" / "standin_robot.xml"
 ROBOT = None if default_robot_path().is_file() else STANDIN
-MARKERS = load_markers()
+MARKERS = load_markers(MAPS_DIR / "lab_markers.json")
 
 
 @pytest.fixture(scope="module")
@@ -43,14 +40,14 @@ def test_walls_and_furniture_are_occupied(grid, x, y, what):
 @pytest.mark.parametrize("name", sorted(MARKERS))
 def test_every_marker_is_free_with_clearance(grid, name):
     marker = MARKERS[name]
-    assert grid.is_free(marker["x"], marker["y"]), name
+    assert grid.is_free(marker.x, marker.y), name
     footprints = static_footprints(mujoco.MjModel.from_xml_path(str(scene_path("lab"))))
-    assert clearance(footprints, marker["x"], marker["y"]) >= 0.4 - 1e-9, name
+    assert clearance(footprints, marker.x, marker.y) >= 0.4 - 1e-9, name
 
 
 def test_doorway_is_open_and_the_bathroom_reachable(grid):
     assert grid.is_free(6.65, 1.9)  # the doorway (its lintel is above the robot)
-    row, col = grid.world_to_cell(MARKERS["bathroom"]["x"], MARKERS["bathroom"]["y"])
+    row, col = grid.world_to_cell(MARKERS["bathroom"].x, MARKERS["bathroom"].y)
     assert grid.known[row, col]  # the flood fill from the entrance got in
     outside = grid.world_to_cell(-1.8, 0.0)
     assert not grid.known[outside]  # beyond the walls is unknown
@@ -58,7 +55,7 @@ def test_doorway_is_open_and_the_bathroom_reachable(grid):
 
 def test_moving_things_are_not_in_the_map():
     model = build_scene("lab", ROBOT).model  # with the robot attached
-    grid = OccupancyGrid.from_model(model)
+    grid = grid_from_model(model)
     assert grid.is_free(0.0, 0.0)  # the robot stands here
     bottle = grid.world_to_cell(4.01, 1.38)
     assert grid.occupied[bottle]  # ...only because the table is under it
@@ -67,7 +64,7 @@ def test_moving_things_are_not_in_the_map():
 
 
 def test_committed_map_matches_the_scene(grid):
-    committed = OccupancyGrid.load(MAPS_DIR / "lab.yaml")
+    committed = read_map(MAPS_DIR / "lab.yaml")
     assert committed.resolution == grid.resolution
     assert committed.origin == pytest.approx(grid.origin)
     assert np.array_equal(committed.occupied, grid.occupied), \
@@ -77,8 +74,8 @@ def test_committed_map_matches_the_scene(grid):
 
 
 def test_save_load_round_trip_and_conversions(grid, tmp_path):
-    png, yaml_path = grid.save(tmp_path / "m")
-    loaded = OccupancyGrid.load(yaml_path)
+    png, yaml_path = write_map(grid, tmp_path / "m")
+    loaded = read_map(yaml_path)
     assert np.array_equal(loaded.occupied, grid.occupied)
     row, col = grid.world_to_cell(2.01, 1.01)
     x, y = grid.cell_to_world(row, col)

@@ -19,11 +19,13 @@ import numpy as np
 
 from stuart_bt.core.jsonfile import is_finite_number
 from stuart_bt.daemon import args as a
+from stuart_bt.maps.markers import load_markers
+from stuart_bt.maps.picture import draw_map_png
 
 from .arms import SIDES, Hands, JointPlayer
 from .base import BaseController, BaseLimits, PersonCheck, wrap
 from .errors import WorldError
-from .occupancy import OccupancyGrid, draw_map_png, footprint_hits, load_markers, static_footprints
+from .occupancy import footprint_hits, grid_from_model, static_footprints
 from .render import Cameras, Recorder, save_png
 from .scene import MAPS_DIR, Scene
 
@@ -63,7 +65,7 @@ class World:
         self.path_log: list[tuple[float, float]] = [(0.0, 0.0)]
         self.collision: list[str] = []
         self.collided = False
-        self.grid = OccupancyGrid.from_model(self.model)
+        self.grid = grid_from_model(self.model)
         self._footprint_mask = self.grid.dilated(FOOTPRINT_RADIUS)
         self._footprints = static_footprints(self.model)
         self._renders = 0

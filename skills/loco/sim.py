@@ -23,6 +23,8 @@ from typing import Any
 from stuart_bt.core.clock import Clock
 from stuart_bt.core.world import Pose
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
+from stuart_bt.maps.files import read_map
+from stuart_bt.maps.paths import PlanningError, path_length, plan
 from stuart_bt.sim.world.client import WorldClient, WorldError
 
 from .backend import (
@@ -36,7 +38,6 @@ from .backend import (
     standoff_on_line,
 )
 from .dry import wrap
-from .planner import PlanningError, load_map, path_length, plan
 
 
 def default_map() -> str:
@@ -113,9 +114,10 @@ class SimLoco(LocoBackend):
             raise ValueError("the sim loco backend needs the world's socket path (option 'world')")
         self.world = WorldClient(options["world"])
         map_file = options.get("map") or default_map()
-        self.grid = load_map(map_file, float(options.get("robot_radius", 0.3)))
+        occupancy = read_map(map_file, float(options.get("robot_radius", 0.3)))
+        self.grid = occupancy.planning_grid()
         # body-relative moves are odometry moves (no global plan), checked against a thinner margin
-        self.near_grid = load_map(map_file, float(options.get("relative_clearance", 0.15)))
+        self.near_grid = occupancy.planning_grid(float(options.get("relative_clearance", 0.15)))
         self.max_speed = float(options.get("max_speed", 0.6))
         self.blocked_timeout = float(options.get("blocked_timeout", 20.0))
         self.approach_slack = float(options.get("approach_slack", 0.10))
@@ -161,13 +163,13 @@ class SimLoco(LocoBackend):
         try:
             return plan(self.grid, (start.x, start.y), (gx, gy), snap=0.0)
         except PlanningError:
-            if not self.near_grid.free(*self.near_grid.cell(gx, gy)):
+            if not self.near_grid.cell_is_free(*self.near_grid.world_to_cell(gx, gy)):
                 raise
         waypoints = plan(self.grid, (start.x, start.y), (gx, gy))  # snaps the goal onto free space
-        free = self.grid.nearest_free(*self.grid.cell(gx, gy), int(0.3 / self.grid.resolution))
+        free = self.grid.nearest_free(*self.grid.world_to_cell(gx, gy), int(0.3 / self.grid.resolution))
         if free is None:
             raise PlanningError(f"({gx:.2f}, {gy:.2f}) has no free space within 0.3 m")
-        snapped = self.grid.centre(*free)
+        snapped = self.grid.cell_to_world(*free)
         if not self.near_grid.segment_free(snapped, (gx, gy)):
             raise PlanningError(f"({gx:.2f}, {gy:.2f}) is too close to an obstacle to approach")
         return [*waypoints[:-1], snapped, (gx, gy)]
@@ -191,7 +193,7 @@ class SimLoco(LocoBackend):
             for heading in headings:
                 for side in sides:
                     spot = approach_stand(wider, heading, side)
-                    if not self.near_grid.free(*self.near_grid.cell(spot.x, spot.y)):
+                    if not self.near_grid.cell_is_free(*self.near_grid.world_to_cell(spot.x, spot.y)):
                         continue
                     try:
                         self._plan_with_final_approach(start, spot.x, spot.y)

@@ -310,9 +310,9 @@ class UnitreeLoco(LocoBackend):
             if "start_pose" in options else Pose()
         self.grid = None
         if options.get("nav_map"):
-            from .planner import load_map
+            from stuart_bt.maps.files import read_map
 
-            self.grid = load_map(str(options["nav_map"]), float(options.get("robot_radius", 0.3)))
+            self.grid = read_map(str(options["nav_map"]), float(options.get("robot_radius", 0.3))).planning_grid()
         self._pose: Pose | None = None
         self._pose_wall = 0.0
         self._arrivals: list[tuple[bool, float]] = []  # (is_arrived, wall time heard)
@@ -440,7 +440,7 @@ class UnitreeLoco(LocoBackend):
         gx, gy, gyaw = goal_pose(start, goal.target)
         route = [(start.x, start.y), (gx, gy)]
         if self.grid is not None:
-            from .planner import PlanningError, plan
+            from stuart_bt.maps.paths import PlanningError, plan
 
             try:
                 route = plan(self.grid, (start.x, start.y), (gx, gy))

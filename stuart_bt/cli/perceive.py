@@ -163,11 +163,12 @@ class _Source:
 
         os.environ.setdefault("MUJOCO_GL", "egl")
         from ..core.suggest import did_you_mean
+        from ..maps.markers import load_markers
         from ..perception.sim_camera import SimCamera
         from ..sim.world.client import WorldError, launch_world
-        from ..sim.world.occupancy import load_markers
+        from ..sim.world.scene import MAPS_DIR
 
-        markers = load_markers()
+        markers = load_markers(MAPS_DIR / "lab_markers.json")
         at = self.args.at or "kitchen"
         if at not in markers:
             raise PerceiveError(f"unknown marker {at!r}{did_you_mean(at, markers)}; "
@@ -176,8 +177,7 @@ class _Source:
         m = markers[at]
         import subprocess
 
-        self.world = launch_world(start=(float(m["x"]), float(m["y"]), float(m.get("yaw", 0.0))),
-                                  stderr=subprocess.DEVNULL)
+        self.world = launch_world(start=(m.x, m.y, m.yaw), stderr=subprocess.DEVNULL)
         objects = self.world.call("info")["objects"]
         for label, x, y in places:
             if label not in objects:
@@ -204,11 +204,15 @@ class _Source:
         return self.world.call("state")["objects"] if self.world is not None else {}
 
     def draw_map(self, out: str, memory: list[dict[str, Any]]) -> None:
-        from ..sim.world.occupancy import draw_map_png, load_markers, scene_grid
+        from ..maps.markers import load_markers
+        from ..maps.picture import draw_map_png
+        from ..sim.world.occupancy import scene_grid
+        from ..sim.world.scene import MAPS_DIR
 
         state = self.world.call("state")
         base = state["base"]
-        draw_map_png(scene_grid(), load_markers(), [(base["x"], base["y"])], state["objects"], out, memory=memory)
+        draw_map_png(scene_grid(), load_markers(MAPS_DIR / "lab_markers.json"), [(base["x"], base["y"])],
+                     state["objects"], out, memory=memory)
 
     def __exit__(self, *exc: object) -> None:
         if self.camera is not None:

@@ -67,7 +67,7 @@ def cmd_serve(args: argparse.Namespace) -> int:
 def _serve(args: argparse.Namespace, listener: socket.socket) -> int:
     import uvicorn
 
-    from ..core.world import load_markers
+    from ..maps.markers import load_markers
     from ..web.app import WebParts, create_app
     from ..web.gestures import GestureFolder
     from ..web.mapfile import MapFile, default_map

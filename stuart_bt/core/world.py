@@ -3,18 +3,18 @@
 It lives on the blackboard under the key ``world`` (see :mod:`stuart_bt.core.blackboard`), so tree
 expressions can read it (``world.held == 'bottle'``) and every leaf updates it from its daemon's
 results (navigate -> pose, pick -> held). Units and frames follow REP-103: metres, radians, map
-frame x forward / y left, yaw counter-clockwise.
+frame x forward / y left, yaw counter-clockwise. Marker files are read and written by
+:mod:`stuart_bt.maps.markers`.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from pathlib import Path
 from typing import Any
 
 from .errors import StuartError
-from .jsonfile import is_finite_number, read_json, to_json
+from .jsonfile import is_finite_number
 
 
 @dataclass
@@ -112,35 +112,3 @@ class WorldState:
             "markers": sorted(self.markers),
             "last_marker": self.last_marker,
         }
-
-
-class MarkerFileError(StuartError, ValueError):
-    pass
-
-
-def load_markers(path: str | Path) -> dict[str, Marker]:
-    """Read a marker file: ``{"frame": "map", "markers": {name: {x, y, yaw, display_name}}}``."""
-    path = Path(path)
-    doc = read_json(path, MarkerFileError, "marker file")
-    entries = doc.get("markers") if isinstance(doc, dict) else None
-    if not isinstance(entries, dict):
-        raise MarkerFileError(f"{path}: expected an object with a 'markers' mapping")
-    markers: dict[str, Marker] = {}
-    for name, m in entries.items():
-        try:
-            markers[name] = Marker(
-                name, float(m["x"]), float(m["y"]), float(m.get("yaw", 0.0)), str(m.get("display_name", ""))
-            )
-        except (KeyError, TypeError, ValueError):
-            raise MarkerFileError(f"{path}: marker {name!r} needs numeric x and y (and optional yaw)") from None
-    return markers
-
-
-def save_markers(path: str | Path, markers: dict[str, Marker], frame: str = "map") -> None:
-    body = {
-        "frame": frame,
-        "markers": {
-            m.name: {"x": m.x, "y": m.y, "yaw": m.yaw, "display_name": m.display_name} for m in markers.values()
-        },
-    }
-    Path(path).write_text(to_json(body, indent=2) + "\n", encoding="utf-8")

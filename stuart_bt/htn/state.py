@@ -22,7 +22,8 @@ from typing import Any
 
 from ..core.errors import StuartError
 from ..core.jsonfile import read_json
-from ..core.world import KnownObject, Pose, WorldState, load_markers
+from ..core.world import KnownObject, Pose, WorldState
+from ..maps.markers import load_markers
 
 ARRIVAL_TOLERANCE = 0.5  # metres: within this of a marker the robot counts as being there (thesis)
 START_MARKER = "entrance"

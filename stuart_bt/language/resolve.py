@@ -2,7 +2,7 @@
 
 The grammar reports what was said ("the charging dock", "station three", "kitchen area"); this
 module maps it onto what the robot knows: the markers of the map it is on (a marker file, see
-:func:`stuart_bt.core.world.load_markers`) and the object labels its detector uses. It is kept apart
+:func:`stuart_bt.maps.markers.load_markers`) and the object labels its detector uses. It is kept apart
 from parsing so one parse can be resolved against any map, and so a failure can be explained:
 "I don't know where the garage is" is said before anything moves.
 
@@ -35,7 +35,8 @@ from pathlib import Path
 from typing import Any
 
 from ..core import gestures
-from ..core.world import Marker, load_markers
+from ..core.world import Marker
+from ..maps.markers import load_markers
 from .intents import FIND, GESTURE, NAVIGATE, PICK, TaskIntent
 from .numbers import digits_for_words
 
@@ -156,7 +157,7 @@ def normalise(text: str) -> tuple[str, ...]:
 class Resolver:
     """Maps spoken targets onto one map's markers and one detector's object labels.
 
-    ``markers``: a ``{name: Marker}`` mapping (as :func:`stuart_bt.core.world.load_markers` returns),
+    ``markers``: a ``{name: Marker}`` mapping (as :func:`stuart_bt.maps.markers.load_markers` returns),
     or plain names; ``objects``: object labels (default: the lab's, ``DEFAULT_OBJECTS``)."""
 
     def __init__(self, markers: Mapping[str, Marker] | Iterable[str] = (),

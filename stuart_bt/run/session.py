@@ -25,9 +25,10 @@ from ..core.blackboard import Blackboard
 from ..core.catalogue import LEAVES
 from ..core.clock import Clock, ScaledClock
 from ..core.events import Event, EventStream, JsonlWriter
-from ..core.world import Pose, load_markers
+from ..core.world import Pose
 from ..daemon.supervisor import Supervisor
 from ..leaves import RunContext, make_leaf
+from ..maps.markers import load_markers
 from ..tree.builder import build
 from ..tree.spec import TreeSpec
 from .executor import Executor, RunOutcome
@@ -258,10 +259,11 @@ class Session:
 
     def _draw_map(self, out: Path) -> None:
         """The lab map with the markers, the path the robot drove and the known objects."""
-        from ..sim.world.occupancy import draw_map_png, scene_grid
+        from ..maps.picture import draw_map_png
+        from ..sim.world.occupancy import scene_grid
 
         path = [(e.data["x"], e.data["y"]) for e in self.recorder.events if e.kind == "pose"]
-        markers = {m.name: {"x": m.x, "y": m.y, "yaw": m.yaw} for m in self.blackboard.world.markers.values()}
+        markers = self.blackboard.world.markers
         objects = {k: {"x": o.x, "y": o.y} for k, o in self.blackboard.world.objects.items()}
         memories = [e.data.get("objects", []) for e in self.recorder.events if e.kind == "memory"]
         Path(out).parent.mkdir(parents=True, exist_ok=True)

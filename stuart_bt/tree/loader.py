@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..core.suggest import did_you_mean
-from ..core.world import MarkerFileError, load_markers
+from ..maps.markers import MarkerFileError, load_markers
 from .errors import ErrorLog, TreeError, TreeLoadError
 from .include_params import Scope, base_dir_of, defaults
 from .nodes import NodeReader

@@ -38,7 +38,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from ..core.jsonfile import is_finite_number, nesting_depth
-from ..core.world import load_markers
+from ..maps.markers import load_markers
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
 from .hub import EventHub
