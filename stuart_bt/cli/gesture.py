@@ -327,15 +327,23 @@ def load_for_show(source: str) -> tuple[str, list[Keyframe], str]:
     return gesture.name, gesture.keyframes, str(path)
 
 
-def cmd_gesture_show(args: argparse.Namespace) -> int:
-    from ..skills.gesture.keyframes import joint_limits
-
+def _load_or_report(source: str) -> tuple[str, list[Keyframe], str] | None:
+    """:func:`load_for_show`, or ``None`` after printing each problem on stderr."""
     try:
-        name, frames, where = load_for_show(args.file)
+        return load_for_show(source)
     except Problems as e:
         for problem in e.problems:
             print(problem, file=sys.stderr)
+        return None
+
+
+def cmd_gesture_show(args: argparse.Namespace) -> int:
+    from ..skills.gesture.keyframes import joint_limits
+
+    loaded = _load_or_report(args.file)
+    if loaded is None:
         return EXIT_FAILED
+    name, frames, where = loaded
     limits = joint_limits()
     groups = moved_groups(frames)
     print(f"{name!r} ({where}): ok, {_count(len(frames))} over "
@@ -351,12 +359,10 @@ def cmd_gesture_play(args: argparse.Namespace) -> int:
     from ..sim.world.client import WorldClient, WorldError
     from ..skills.gesture.sim import BLEND_SECONDS, BLEND_THRESHOLD
 
-    try:
-        name, frames, _ = load_for_show(args.file)
-    except Problems as e:
-        for problem in e.problems:
-            print(problem, file=sys.stderr)
+    loaded = _load_or_report(args.file)
+    if loaded is None:
         return EXIT_FAILED
+    name, frames, _ = loaded
     try:
         with WorldClient(args.world, timeout=10.0, connect_timeout=2.0) as client:
             now = client.call("state")
