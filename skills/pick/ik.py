@@ -47,6 +47,16 @@ TARGET_AXES: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]] = {
 }
 
 
+def as_arm(side: str) -> Arm:
+    """``side`` as an :data:`Arm`, checked: the daemons take arm names from requests as plain
+    strings ("auto" already resolved), and the solvers and joint tables take only these two."""
+    if side == "left":
+        return "left"
+    if side == "right":
+        return "right"
+    raise ValueError(f"no arm {side!r}; arms are {' and '.join(ARMS)}")
+
+
 @dataclass(frozen=True)
 class IKResult:
     success: bool

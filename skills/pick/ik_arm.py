@@ -16,6 +16,8 @@ import pinocchio as pin
 from stuart_bt.core.suggest import did_you_mean
 from stuart_bt.sim.robot import NEUTRAL, URDF_PATH, arm_joints
 
+from .ik import as_arm
+
 
 @functools.lru_cache(maxsize=1)
 def full_model() -> pin.Model:
@@ -28,7 +30,7 @@ class ArmChain:
     def __init__(self, arm: str) -> None:
         model = full_model()
         self.arm = arm
-        self.joints: tuple[str, ...] = arm_joints(arm)  # type: ignore[arg-type]
+        self.joints: tuple[str, ...] = arm_joints(as_arm(arm))
         locked = [model.getJointId(n) for n in model.names[1:] if n not in self.joints]
         self.model = pin.buildReducedModel(model, locked, pin.neutral(model))
         self.data = self.model.createData()

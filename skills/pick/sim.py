@@ -30,7 +30,7 @@ from stuart_bt.sim.robot import description as desc
 from stuart_bt.sim.world.client import WorldClient, WorldError
 
 from .backend import PickBackend
-from .ik import IKResult, check_reachable
+from .ik import IKResult, as_arm, check_reachable
 from .solvers import make_solver
 
 TORSO_HEIGHT = desc.PELVIS_HEIGHT + desc.WAIST_HEIGHT  # torso_link above the floor, waist at zero
@@ -146,17 +146,17 @@ class SimPick(PickBackend):
             obj = {**obj, **position}
         # grasp the upper body of the object, where a hand closes around a bottle or a cup
         target = world_to_torso(np.array([obj["x"], obj["y"], obj["z"] + self.grasp_dz]), base)
-        side = ("left" if target[1] >= 0 else "right") if arm == "auto" else arm
+        side = as_arm(("left" if target[1] >= 0 else "right") if arm == "auto" else arm)
         waypoints = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         for name, point in waypoints.items():
-            reason = check_reachable(side, point)  # type: ignore[arg-type]
+            reason = check_reachable(side, point)
             if reason:
                 raise DaemonError("unreachable", f"{label} {name}: {reason}", data={"target_torso": target.tolist()})
         joints = state.get("joints", {})
-        seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
+        seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}
         solutions: dict[str, IKResult] = {}
         for name, point in waypoints.items():
-            result = self.solver.solve(side, point, seed)  # type: ignore[arg-type]
+            result = self.solver.solve(side, point, seed)
             if not result.success:
                 raise DaemonError("unreachable", f"{label} {name}: no arm configuration: {result.reason}",
                                   data={"target_torso": target.tolist()})
@@ -207,7 +207,7 @@ class SimPick(PickBackend):
         robot keeps holding and says why (the floor is out of a standing G1's reach)."""
         state = self.call("state")
         held = {s: v for s, v in state.get("held", {}).items() if v}
-        side = arm if arm != "auto" else next(iter(held), "right")
+        side = as_arm(arm if arm != "auto" else next(iter(held), "right"))
         if side not in held:
             raise DaemonError("not_holding", f"the {side} hand holds nothing")
         label = held[side]
@@ -218,19 +218,19 @@ class SimPick(PickBackend):
         hand = np.array(state["hand_points"][side], dtype=float) + np.array([0.0, 0.0, drop])
         where = f"on the {surface['geom'].replace('_', ' ')} ({surface['z']:.2f} m)"
         joints = state.get("joints", {})
-        seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}  # type: ignore[arg-type]
+        seed = {j: float(joints[j]) for j in desc.arm_joints(side) if j in joints}
         reason: str | None = None
         for reach_in in PLACE_REACH_IN:  # a little further in, away from the edge, when the arm allows
             target = world_to_torso(hand, base) + np.array([reach_in, 0.0, 0.0])
-            reason = check_reachable(side, target)  # type: ignore[arg-type]
+            reason = check_reachable(side, target)
             if reason is None:
-                result = self.solver.solve(side, target, seed)  # type: ignore[arg-type]
+                result = self.solver.solve(side, target, seed)
                 reason = None if result.success else result.reason
             if reason is None:
                 break
         if reason is not None:
             raise DaemonError("unreachable", f"cannot put the {label} down {where} from here: {reason}")
-        neutral = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]
+        neutral = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}
         phases: list[tuple[str, str, dict[str, Any], float]] = [
             ("lower", "arm_trajectory", {"points": [{"t": 1.2, "joints": result.q}], "id": "lower"}, 1.2),
             ("open", "hand", {"side": side, "closed": False}, 0.6),

@@ -32,7 +32,7 @@ from stuart_bt.skills.arm_stream import ARM_REST, ArmStreamer, Targets
 from stuart_bt.skills.gesture.keyframes import hand
 
 from .dry import DryPick, Position, _lateral
-from .ik import check_reachable
+from .ik import Arm, as_arm, check_reachable
 from .sim import LIFT, PRE_GRASP, torso_to_world, world_to_torso
 from .solvers import make_solver
 
@@ -116,7 +116,7 @@ class UnitreePick(DryPick):
                                                  "release it first")
         at = self._aim(label, position)
         target = world_to_torso(np.array([at.x, at.y, at.z + self.grasp_dz]), robot_pose)
-        side = arm if arm != "auto" else ("left" if _lateral(robot_pose, at) >= 0 else "right")
+        side = as_arm(arm if arm != "auto" else ("left" if _lateral(robot_pose, at) >= 0 else "right"))
         points = {"pre_grasp": target + PRE_GRASP, "grasp": target, "lift": target + LIFT}
         solutions = self._solve(label, side, points, target)
         open_hand, closed = hand(side, "open"), hand(side, "grip")
@@ -135,14 +135,14 @@ class UnitreePick(DryPick):
 
         return ArmPhases(self, phases, finish, self.gate, planned, release_at_end=False)
 
-    def _solve(self, label: str, side: str, points: dict[str, np.ndarray], target: np.ndarray) -> dict[str, Targets]:
+    def _solve(self, label: str, side: Arm, points: dict[str, np.ndarray], target: np.ndarray) -> dict[str, Targets]:
         """Every waypoint reachable and solved within the joint limits, or ``unreachable``."""
         for name, point in points.items():
-            reason = check_reachable(side, point)  # type: ignore[arg-type]
+            reason = check_reachable(side, point)
             if reason:
                 raise DaemonError("unreachable", f"{label} {name}: {reason}",
                                   data={"target_torso": [round(float(v), 4) for v in target]})
-        seed = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}  # type: ignore[arg-type]
+        seed = {j: desc.NEUTRAL[j] for j in desc.arm_joints(side)}
         solutions: dict[str, Targets] = {}
         for name, point in points.items():
             result = self.solver.solve(side, point, seed)
