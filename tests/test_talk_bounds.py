@@ -6,8 +6,9 @@ from __future__ import annotations
 import time
 
 from stuart_bt.core.events import Event
-from stuart_bt.mission import executor as mx
-from stuart_bt.mission.executor import MissionExecutor, MissionOptions
+from stuart_bt.mission.executor import SESSION_HISTORY, MissionExecutor, MissionOptions
+from stuart_bt.mission.queue import MAX_QUEUED_REPLIES, STALE_REPLY_S, Say
+from stuart_bt.mission.replies import MAX_PENDING_REPLIES
 
 
 def test_fifty_questions_at_once_leave_at_most_a_few_replies_before_the_next_command_walks():
@@ -22,7 +23,7 @@ def test_fifty_questions_at_once_leave_at_most_a_few_replies_before_the_next_com
                     and e.data.get("cmd") == "navigate")
         spoken_before = [e for e in events[:walk] if e.kind == "command" and e.data.get("family") == "tts"
                          and e.data.get("cmd") == "say"]
-        assert len(spoken_before) <= mx.MAX_PENDING_REPLIES + mx.MAX_QUEUED_REPLIES + 1  # + the mission's ack
+        assert len(spoken_before) <= MAX_PENDING_REPLIES + MAX_QUEUED_REPLIES + 1  # + the mission's ack
         warnings = [e for e in events if e.kind == "warning" and "too much talk" in e.data.get("message", "")]
         assert warnings, "the talk that went unanswered is counted in a warning"
         assert len(warnings) <= 3, "at most one such warning a second"
@@ -33,11 +34,11 @@ def test_a_reply_that_waited_too_long_is_dropped_unsaid():
     events: list[Event] = []
     with MissionExecutor(MissionOptions(backend="dry", speed=20.0)) as robot:
         robot.events.subscribe(events.append)
-        stale = mx._Say("an answer to a question asked long ago", "reply")
-        stale.made = time.monotonic() - mx.STALE_REPLY_S - 1.0
-        with robot._cond:
-            robot._queue.append(stale)
-            robot._cond.notify_all()
+        stale = Say("an answer to a question asked long ago", "reply")
+        stale.made = time.monotonic() - STALE_REPLY_S - 1.0
+        with robot.jobs.cond:
+            robot.jobs.queue.append(stale)
+            robot.jobs.cond.notify_all()
         assert robot.wait_idle(30.0)
         said = [e.data["args"]["text"] for e in events if e.kind == "command" and e.data.get("cmd") == "say"]
         assert stale.text not in said
@@ -54,4 +55,4 @@ def test_a_long_mission_session_keeps_a_bounded_event_history():
         stream.publish("log", message=f"line {k}")
     assert len(recorder.events) == 100 and recorder.events[-1].data["message"] == "line 999"
     with MissionExecutor(MissionOptions(backend="dry", speed=20.0)) as robot:
-        assert robot.session.recorder.events.maxlen == mx.SESSION_HISTORY
+        assert robot.session.recorder.events.maxlen == SESSION_HISTORY

@@ -59,15 +59,16 @@ class ChatExecutor(MissionExecutor):
         that instant to stop, and misses one the worker is still building (Ctrl-C right after a
         mission started): that tree then runs to its end while close waits. So keep asking
         until the worker is out."""
-        with self._cond:
-            self._closing = True
-            self._cond.notify_all()
+        jobs = self.jobs
+        with jobs.cond:
+            jobs.closing = True
+            jobs.cond.notify_all()
         deadline = time.monotonic() + CLOSE_WAIT
-        while self._worker is not None and self._worker.is_alive() and time.monotonic() < deadline:
-            with self._cond:
-                if self._executor is not None:
-                    self._executor.request_stop("shutting down")
-            self._worker.join(0.02)
+        while jobs.worker is not None and jobs.worker.is_alive() and time.monotonic() < deadline:
+            with jobs.cond:
+                if jobs.executor is not None:
+                    jobs.executor.request_stop("shutting down")
+            jobs.worker.join(0.02)
         super().close()
 
     def _run_tree(self, spec: TreeSpec, mission: Mission | None) -> tuple[RunOutcome, set[str], str | None]:

@@ -6,7 +6,8 @@ an enum, typed fields), so it is always well formed; then the same resolver and 
 for a parsed utterance decide whether the proposal can be planned at all. Only a proposal that
 passes is spoken back ("Shall I go to the kitchen? Say yes to go ahead.") and it runs only after a
 yes. Backends that can propose implement ``propose(messages, schema) -> str`` (the raw JSON);
-the canned conversation cannot, so without a model there are no proposals.
+the canned conversation cannot, so without a model there are no proposals. :class:`Offers` holds
+the one proposal waiting for its yes or no.
 """
 
 from __future__ import annotations
@@ -14,12 +15,19 @@ from __future__ import annotations
 import json
 import math
 import re
-from collections.abc import Iterable, Sequence
-from typing import Any, Protocol, runtime_checkable
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from ..core.jsonfile import is_finite_number
 from ..language import TaskIntent
 from ..language.intents import ACTIONS
+from .queue import Say
+
+if TYPE_CHECKING:
+    from ..core.world import WorldState
+    from .commands import Command
+    from .queue import JobQueue
 
 MAX_TASKS = 3
 
@@ -109,3 +117,63 @@ def describe(intents: Sequence[TaskIntent]) -> str:
         PHRASES.get(i.action, i.action.replace("_", " ")).format(
             place=i.target.replace("_", " "), target=i.target, x=i.x, y=i.y, degrees=math.degrees(i.yaw))
         for i in intents)
+
+
+@dataclass(eq=False)
+class Offers:
+    """The proposal offered and waiting for a yes (guarded by the job queue's condition, like the
+    question that offers it). ``resolve`` checks intents as for a parsed utterance (resolved
+    intents, calls, sentences for those that would not); ``accept`` queues a confirmed one."""
+
+    jobs: JobQueue
+    conversation: Any
+    lab: WorldState  # the places and objects a proposal may name
+    enabled: bool
+    resolve: Callable[[list[TaskIntent]], tuple[list[TaskIntent], Any, list[str]]]
+    accept: Callable[[str, list[TaskIntent], bool], None]
+    _pending: tuple[str, list[TaskIntent]] | None = field(default=None, init=False)  # (request, intents) awaiting a yes
+
+    def offer(self, text: str) -> bool:
+        """On the reply thread: a request the grammar missed may get a model's proposal. Only one
+        that resolves and plans-checks is offered ("Shall I ...?"); it waits for a yes."""
+        if not self.enabled or is_question(text) or not isinstance(self.conversation, Proposer):
+            return False
+        from ..core.gestures import LIBRARY
+
+        events = self.jobs.events
+        prompt = messages(text, sorted(self.lab.markers), sorted(self.lab.objects), sorted(LIBRARY))
+        try:
+            intents = parse(self.conversation.propose(prompt, schema()))
+        except Exception as e:  # noqa: BLE001 - a failing model must leave the plain reply
+            events.publish("warning", message=f"task proposal failed: {type(e).__name__}: {e}")
+            return False
+        checked, _, unknown = self.resolve(intents or [])
+        if not checked or unknown:  # a proposal that would not resolve or plan is not offered
+            return False
+        question = f"Shall I {describe(checked)}? Say yes to go ahead."
+        with self.jobs.cond:
+            self._pending = (text, checked)
+            self.jobs.queue.appendleft(Say(question, "proposal"))
+            self.jobs.cond.notify_all()
+        events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked])
+        return True
+
+    def answer(self, command: Command) -> bool:
+        """A yes runs the offered proposal, a no drops it (no wake phrase needed for either: the
+        robot just asked); anything else drops it and is handled as usual."""
+        with self.jobs.cond:
+            pending, self._pending = self._pending, None
+        if pending is None:
+            return False
+        events = self.jobs.events
+        text = command.parse.command if command.parse.wake else command.parse.utterance
+        if YES.match(text or ""):
+            events.publish("proposal", phase="confirmed", to=pending[0])
+            self.accept(pending[0], pending[1], False)
+            return True
+        if NO.match(text or ""):
+            events.publish("proposal", phase="declined", to=pending[0])
+            self.jobs.say_first(Say("OK, I won't.", "proposal"))
+            return True
+        events.publish("proposal", phase="dropped", to=pending[0])
+        return False

@@ -1,0 +1,122 @@
+"""Conversation: answering what is said to the robot that is not a command.
+
+A :class:`~stuart_bt.conversation.reply.Conversation` may be slow (a language model), so replies
+are thought about on a thread of their own and never hold up the mission worker or the tick
+thread. The answer is queued to be said like any other job, or, while a mission runs, said at the
+mission's next pause in speech (:meth:`Replies.say_aside`), so a question asked during a walk is
+answered during the walk.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING, Any
+
+from .queue import Look, Mission, Say
+from .running import look_tree
+
+if TYPE_CHECKING:
+    from ..conversation.reply import Conversation
+    from ..run.session import Session
+    from .queue import JobQueue
+
+MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
+
+
+class Replies:
+    """Replies to talk. ``offer`` may turn a request into a task proposal instead (True: it did);
+    ``run_tree`` runs the one-leaf tree that looks before a question about what the robot sees."""
+
+    def __init__(self, jobs: JobQueue, session: Session, conversation: Conversation,
+                 offer: Callable[[str], bool], run_tree: Callable[..., Any]) -> None:
+        self.jobs = jobs
+        self.session = session
+        self.conversation = conversation
+        self.offer = offer
+        self.run_tree = run_tree
+        self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
+        self._unanswered = 0  # utterances let go while too many replies were pending
+        self._last_unanswered_warning = float("-inf")
+
+    def close(self) -> None:
+        self._talk.shutdown(wait=False, cancel_futures=True)
+
+    def converse(self, text: str) -> None:
+        """Answer in the conversation thread; a question about what the robot sees, asked while
+        it is idle, first gets one fresh look (an ``observe`` tree) so the answer is current.
+        A robot answers one question at a time: while MAX_PENDING_REPLIES are being thought
+        about, more talk is let go (a warning, at most one a second, counts it) instead of piling
+        up replies that would keep the next command waiting."""
+        from ..conversation.prompt import is_vision_question
+
+        jobs = self.jobs
+        with jobs.cond:
+            if jobs.pending_replies >= MAX_PENDING_REPLIES:
+                self._unanswered += 1
+                now = time.monotonic()
+                if now - self._last_unanswered_warning >= 1.0:
+                    self._last_unanswered_warning = now
+                    jobs.events.publish("warning", message=f"too much talk at once: {self._unanswered} "
+                                        f"utterance(s) not answered so far (latest: {text[:60]!r})")
+                return
+            jobs.pending_replies += 1
+            look_first = (is_vision_question(text) and jobs.current is None and not jobs.queue
+                          and self.session.supervisor is not None and "vision" in self.session.supervisor.families)
+            if look_first:
+                jobs.queue.appendleft(Look(text))
+                jobs.cond.notify_all()
+        if not look_first:
+            self.answer(text)
+
+    def look_then_answer(self, question: str) -> None:
+        """On the worker: one look, then the answer (``pending_replies`` was counted already)."""
+        try:
+            self.run_tree(look_tree(), None)  # a failed look leaves the memory as it was: still answer
+        finally:
+            self.answer(question)
+
+    def answer(self, text: str) -> None:
+        """Reply from the world state as it is now (the reply thread; ``pending_replies`` was
+        counted by :meth:`converse`)."""
+        from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
+
+        jobs = self.jobs
+        world = self.session.blackboard.world
+        busy = jobs.current is not None and not isinstance(jobs.current, Look)
+        context = {"held": world.held, "at": world.last_marker, "busy": busy,
+                   "detections": seen_objects(world, self.session.clock.now())}
+
+        def answer() -> None:
+            try:
+                if self.offer(text):
+                    return
+                reply = self.conversation.reply(text, context)
+                jobs.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
+                with jobs.cond:
+                    if isinstance(jobs.current, Mission) and jobs.executor is not None:
+                        jobs.asides.append(reply.text)  # said at the mission's next pause in speech
+                    else:
+                        jobs.queue_reply(Say(reply.text, "reply"))
+            finally:
+                with jobs.cond:
+                    jobs.pending_replies -= 1
+                    jobs.cond.notify_all()
+
+        self._talk.submit(answer)
+
+    def say_aside(self) -> None:
+        """Before a mission tick: a reply that is waiting goes to the speech daemon when the mission
+        is not speaking, so a question asked during a walk is answered during the walk. The
+        mission's own next speech takes the voice back (the daemon preempts the older one)."""
+        supervisor = self.session.supervisor
+        if not self.jobs.asides or supervisor is None or "tts" not in supervisor.families:
+            return
+        tts = supervisor.client("tts")
+        if any(r.cmd == "say" for r in tts.in_flight):
+            return
+        with self.jobs.cond:
+            text = self.jobs.asides.popleft() if self.jobs.asides else None
+        if text is not None:
+            tts.request("say", {"text": text}, path="reply")
