@@ -6,8 +6,10 @@ defaults), ``primitives`` (tasks bound to one skill of :mod:`stuart_bt.core.cata
 skill arguments, preconditions and effects on the symbolic state) and ``tasks`` (compound tasks
 with ordered methods, each a precondition and ordered subtasks). The htn package, bottom first:
 :mod:`.values` (task calls and values as written), :mod:`.expressions` (compiled preconditions,
-values and templates), this module (the model), :mod:`.load` (reading and checking a file at
-file:line:column), :mod:`.planner`, :mod:`.plan` and :mod:`.explain`.
+values and templates), this module (the model), the file readers (:mod:`.misnamed`,
+:mod:`.read_yaml`, :mod:`.read_expressions`, :mod:`.read_primitives`, :mod:`.read_methods`,
+and :mod:`.load` over them: reading and checking a file at file:line:column), :mod:`.planner`,
+:mod:`.plan` and :mod:`.explain`.
 """
 
 from __future__ import annotations
