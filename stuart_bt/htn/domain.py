@@ -259,11 +259,14 @@ class Domain:
         return list(value) if isinstance(value, tuple) else value
 
     def to_call(self, value: Any) -> TaskCall:
-        """A task value: a TaskCall, task text, ``[name, *args]``, or a TaskIntent mapping."""
+        """A task value: a TaskCall, task text, ``[name, *args]``, or a TaskIntent mapping.
+
+        Values of ``task``/``tasks`` parameters come from expressions and task text in all these
+        shapes, so binding accepts each; the planner's own input does not (a list of TaskCall)."""
         if isinstance(value, TaskCall):
             return value
         if isinstance(value, str):
-            calls = self.parse_tasks(value)
+            calls = self.calls_from_text(value)
             if len(calls) != 1:
                 raise TaskArgumentError(f"expected one task, got {len(calls)} in {value!r}")
             return calls[0]
@@ -274,9 +277,10 @@ class Domain:
         raise TaskArgumentError(f"not a task: {format_value(value)}")
 
     # inputs ------------------------------------------------------------------------------------------
-    def parse_tasks(self, text: str) -> list[TaskCall]:
-        """Tasks from text: ``fetch(bottle, workbench)``, several separated by ``;``, or a JSON
-        list of TaskIntents ``[{"action": "navigate_to_marker", "target": "kitchen"}]``."""
+    def calls_from_text(self, text: str) -> list[TaskCall]:
+        """Tasks from text, for the planner (which takes only TaskCalls): ``fetch(bottle,
+        workbench)``, several separated by ``;``, or a JSON list of TaskIntents
+        ``[{"action": "navigate_to_marker", "target": "kitchen"}]`` (what ``stuart-bt plan`` is given)."""
         text = text.strip()
         if text[:1] in "[{":
             try:
