@@ -34,10 +34,10 @@ def test_the_htn_example_plans_as_the_guide_says():
 
 
 def test_the_htn_example_walks_only_when_it_must():
-    from stuart_bt.htn import Planner, load_domain_text
+    from stuart_bt.htn import Planner, TaskCall, load_domain_text
 
     domain = load_domain_text(blocks("yaml")[0])
-    plan = Planner(domain).plan("greet_at(entrance)", domain.initial_state())
+    plan = Planner(domain).plan([TaskCall.parse("greet_at(entrance)")], domain.initial_state())
     assert [step.skill for step in plan.primitives()] == ["speak"]
 
 

@@ -233,6 +233,15 @@ def test_task_text_reads_words_numbers_lists_and_nested_tasks() -> None:
         parse_task_text("fetch(bottle + 1, kitchen)")
 
 
+def test_one_task_call_reads_from_its_text_and_only_one() -> None:
+    assert TaskCall.parse("fetch(bottle, workbench)") == TaskCall("fetch", ("bottle", "workbench"))
+    assert TaskCall.parse("turn_around") == TaskCall("turn_around")
+    with pytest.raises(TaskArgumentError, match="expected one task, got 2 in 'greet; turn_around'"):
+        TaskCall.parse("greet; turn_around")
+    with pytest.raises(TaskArgumentError, match="quote names with spaces"):
+        TaskCall.parse("gesture(high wave)")
+
+
 def test_task_intents_become_the_tasks_their_actions_name() -> None:
     domain = load_domain_text(textwrap.dedent("""\
         domain: d
@@ -250,8 +259,8 @@ def test_task_intents_become_the_tasks_their_actions_name() -> None:
             intent: {}
             methods: [{name: nothing, do: []}]
         """))
-    calls = domain.parse_tasks('[{"action": "navigate_to_marker", "target": "kitchen", "x": null, "raw_text": "go"},'
-                               ' {"action": "turn_around"}]')
+    calls = domain.calls_from_text('[{"action": "navigate_to_marker", "target": "kitchen", "x": null, '
+                                   '"raw_text": "go"}, {"action": "turn_around"}]')
     assert calls == [TaskCall("navigate_to_marker", (), (("place", "kitchen"),)), TaskCall("turn_around")]
     with pytest.raises(TaskArgumentError, match="intent 1: unknown action 'navigate_to_markr' "
                                                 "\\(did you mean 'navigate_to_marker'\\?\\)"):

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from stuart_bt.cli.plan import add_command
-from stuart_bt.htn import Planner, PlanningFailed, explain, load_domain_text
+from stuart_bt.htn import Planner, PlanningFailed, explain, load_domain_text, parse_task_text
 
 ERRANDS = textwrap.dedent("""\
     domain: errands
@@ -59,7 +59,7 @@ ERRANDS = textwrap.dedent("""\
 
 def plan_text(task: str, **state: object) -> str:
     domain = load_domain_text(ERRANDS)
-    return explain(Planner(domain).plan(task, {**domain.initial_state(), **state}))
+    return explain(Planner(domain).plan(parse_task_text(task), {**domain.initial_state(), **state}))
 
 
 def test_the_explanation_shows_methods_chosen_rejected_and_the_steps_with_their_effects() -> None:
@@ -76,7 +76,7 @@ def test_the_explanation_shows_methods_chosen_rejected_and_the_steps_with_their_
 
 def test_rejections_and_effects_can_be_left_out_and_ascii_drawn() -> None:
     domain = load_domain_text(ERRANDS)
-    plan = Planner(domain).plan("visit(office)")
+    plan = Planner(domain).plan(parse_task_text("visit(office)"))
     assert explain(plan, rejections=False, effects=False, ascii=True) == textwrap.dedent("""\
         mission
         `- visit(office)  [walk_in]
@@ -89,7 +89,7 @@ def test_rejections_and_effects_can_be_left_out_and_ascii_drawn() -> None:
 def test_a_failure_is_explained_down_to_its_root_cause() -> None:
     domain = load_domain_text(ERRANDS)
     with pytest.raises(PlanningFailed) as caught:
-        Planner(domain).plan("visit(office)", {**domain.initial_state(), "held": "tray"})
+        Planner(domain).plan(parse_task_text("visit(office)"), {**domain.initial_state(), "held": "tray"})
     assert str(caught.value) == textwrap.dedent("""\
         no plan for visit(office):
           get_in(): no method works
@@ -109,7 +109,7 @@ def test_a_failure_is_explained_down_to_its_root_cause() -> None:
 
 
 def test_the_json_form_keeps_the_tree_the_steps_and_the_rejections() -> None:
-    doc = json.loads(json.dumps(Planner(load_domain_text(ERRANDS)).plan("visit(office)").to_dict()))
+    doc = json.loads(json.dumps(Planner(load_domain_text(ERRANDS)).plan(parse_task_text("visit(office)")).to_dict()))
     assert doc["ok"] is True and doc["tasks"] == ["visit(office)"]
     assert [(s["step"], s["skill"], s["args"]) for s in doc["steps"]] == [
         (1, "navigate", {"marker": "office"}), (2, "gesture", {"play": "hands up"}), (3, "navigate", {"dx": 1.0})]

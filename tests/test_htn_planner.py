@@ -8,10 +8,12 @@ import json
 
 import pytest
 
+from stuart_bt.core.errors import StuartError
 from stuart_bt.htn import (
     HookRegistry,
     Plan,
     Planner,
+    PlannerInputError,
     PlanningBudgetExceeded,
     PlanningFailed,
     State,
@@ -19,6 +21,7 @@ from stuart_bt.htn import (
     TaskCall,
     explain,
     load_domain_text,
+    parse_task_text,
 )
 
 KITCHEN = """
@@ -86,7 +89,7 @@ def skills(plan: Plan) -> list[str]:
 
 # -- order, preconditions, effects ---------------------------------------------------------------------
 def test_methods_are_tried_in_order_and_the_first_applicable_one_is_used() -> None:
-    plan = kitchen().plan("greet")
+    plan = kitchen().plan(parse_task_text("greet"))
     greet = plan.tasks[0]
     assert greet.method == "wave_first"
     assert greet.rejected == []
@@ -94,7 +97,7 @@ def test_methods_are_tried_in_order_and_the_first_applicable_one_is_used() -> No
 
 
 def test_a_precondition_reads_bound_parameters_and_state_variables() -> None:
-    plan = kitchen().plan("fetch(bottle, workbench)")
+    plan = kitchen().plan(parse_task_text("fetch(bottle, workbench)"))
     fetch = plan.tasks[0]
     assert fetch.method == "known"
     [rejected] = fetch.rejected
@@ -103,7 +106,7 @@ def test_a_precondition_reads_bound_parameters_and_state_variables() -> None:
 
 
 def test_effects_are_seen_by_later_steps_and_the_final_state_is_predicted() -> None:
-    plan = kitchen().plan("fetch(bottle, workbench)")
+    plan = kitchen().plan(parse_task_text("fetch(bottle, workbench)"))
     assert skills(plan) == [
         'navigate {"marker": "kitchen"}',      # go(objects[obj]): the index is the bound parameter
         'pick {"object": "bottle"}',           # pre objects[obj] == at holds after the walk
@@ -116,7 +119,7 @@ def test_effects_are_seen_by_later_steps_and_the_final_state_is_predicted() -> N
 
 
 def test_a_second_task_plans_against_the_state_the_first_one_leaves() -> None:
-    plan = kitchen().plan("fetch(bottle, workbench); fetch(bottle, entrance)")
+    plan = kitchen().plan(parse_task_text("fetch(bottle, workbench); fetch(bottle, entrance)"))
     second = plan.tasks[1]
     assert second.children[0].call == "go(workbench)"  # where the first fetch put the bottle
     assert plan.state["objects"]["bottle"] == "entrance"
@@ -126,7 +129,7 @@ def test_the_callers_state_is_never_changed() -> None:
     state = State(at="entrance", held=None, objects={"bottle": "kitchen"},
                   markers={"entrance": {}, "kitchen": {}, "workbench": {}}, trail=[])
     before = {k: (dict(v) if isinstance(v, dict) else v) for k, v in state.items()}
-    kitchen().plan("fetch(bottle, workbench)", state)
+    kitchen().plan(parse_task_text("fetch(bottle, workbench)"), state)
     assert dict(state) == before
 
 
@@ -163,7 +166,7 @@ tasks:
 
 
 def test_a_later_failure_makes_the_planner_try_the_next_method_of_an_earlier_task() -> None:
-    plan = Planner(load_domain_text(ROUTES)).plan("trip")
+    plan = Planner(load_domain_text(ROUTES)).plan(parse_task_text("trip"))
     choose = plan.tasks[0].children[0]
     assert choose.method == "tunnel"
     [bridge] = choose.rejected
@@ -176,12 +179,12 @@ def test_a_later_failure_makes_the_planner_try_the_next_method_of_an_earlier_tas
 
 def test_without_backtracking_the_first_commitment_is_final_as_in_gtpyhop() -> None:
     with pytest.raises(PlanningFailed) as caught:
-        Planner(load_domain_text(ROUTES), backtracking=False).plan("trip")
+        Planner(load_domain_text(ROUTES), backtracking=False).plan(parse_task_text("trip"))
     assert caught.value.failure.task == "cross()"
 
 
 def test_a_failure_below_a_method_rejects_it_as_a_failed_subtask() -> None:
-    plan = kitchen().plan("greet", {**load_domain_text(KITCHEN).initial_state(), "held": "cup"})
+    plan = kitchen().plan(parse_task_text("greet"), {**load_domain_text(KITCHEN).initial_state(), "held": "cup"})
     greet = plan.tasks[0]
     assert greet.method == "just_say"
     [wave_first] = greet.rejected
@@ -192,7 +195,7 @@ def test_a_failure_below_a_method_rejects_it_as_a_failed_subtask() -> None:
 
 def test_when_nothing_works_the_failure_names_the_clause_and_the_values() -> None:
     with pytest.raises(PlanningFailed) as caught:
-        kitchen().plan("fetch(bottle, moon)")
+        kitchen().plan(parse_task_text("fetch(bottle, moon)"))
     failure = caught.value.failure
     assert failure.task == "go(moon)"
     assert failure.path == "fetch(bottle, moon) > go(moon)"
@@ -236,9 +239,9 @@ tasks:
       - name: one_step
         do: [lift(obj)]
 """, hooks=hooks)
-    heavy_plan = Planner(domain).plan("carry(anvil)")
+    heavy_plan = Planner(domain).plan(parse_task_text("carry(anvil)"))
     assert skills(heavy_plan) == ['navigate {"dx": 1.0}', 'pick {"object": "anvil"}']
-    light_plan = Planner(domain).plan("carry(feather)")
+    light_plan = Planner(domain).plan(parse_task_text("carry(feather)"))
     assert str(light_plan.tasks[0].rejected[0].reason) == "hook heavy(obj='feather') returned false"
     assert seen == [("heavy", "anvil"), ("heavy", "feather")]
 
@@ -270,26 +273,45 @@ tasks:
             do:
               - run: t
 """)
-    plan = Planner(domain).plan("do_all([count([one, two]), say(three)])")
+    plan = Planner(domain).plan(parse_task_text("do_all([count([one, two]), say(three)])"))
     assert [s.skill_args["text"] for s in plan.primitives()] == ["say one", "say two", "three"]
 
 
-def test_the_planner_accepts_text_task_calls_and_lists() -> None:
+def test_the_planner_takes_a_list_of_task_calls_which_named_converters_make() -> None:
     planner = kitchen()
-    by_text = skills(planner.plan("fetch(bottle, workbench)"))
-    assert skills(planner.plan(TaskCall("fetch", ("bottle", "workbench")))) == by_text
-    assert skills(planner.plan(["fetch", "bottle", "workbench"])) == by_text
-    assert skills(planner.plan([TaskCall("fetch", (), (("obj", "bottle"), ("place", "workbench")))])) == by_text
+    by_text = skills(planner.plan(planner.domain.calls_from_text("fetch(bottle, workbench)")))
+    assert skills(planner.plan([TaskCall.parse("fetch(bottle, workbench)")])) == by_text
+    assert skills(planner.plan([TaskCall("fetch", ("bottle", "workbench"))])) == by_text
+    assert skills(planner.plan((TaskCall("fetch", (), (("obj", "bottle"), ("place", "workbench"))),))) == by_text
+
+
+@pytest.mark.parametrize(("given", "says"), [
+    ("fetch(bottle, workbench)",
+     "got task text 'fetch(bottle, workbench)': convert it with domain.calls_from_text(text) "
+     "(or [TaskCall.parse(text)] for one task)"),
+    (TaskCall("greet"), "got one TaskCall greet(): put it in a list, [call]"),
+    ({"action": "greet"}, "got a TaskIntent {'action': 'greet'}: convert TaskIntents with "
+                          "domain.calls_from_intents(intents)"),
+    (["fetch", "bottle", "workbench"], "item 1 of the list is task text 'fetch': convert it with"),
+    ([TaskCall("greet"), {"action": "greet"}], "item 2 of the list is a TaskIntent {'action': 'greet'}"),
+    (None, "got NoneType None"),
+])
+def test_any_other_input_is_refused_with_what_was_given_and_what_is_expected(given: object, says: str) -> None:
+    with pytest.raises(PlannerInputError) as caught:
+        kitchen().plan(given)  # type: ignore[arg-type]
+    assert str(caught.value).startswith("Planner.plan takes a list of TaskCall; ")
+    assert says in str(caught.value)
+    assert isinstance(caught.value, StuartError) and caught.value.code == "planner_input"
 
 
 def test_unknown_tasks_and_bad_arguments_are_input_errors() -> None:
     planner = kitchen()
     with pytest.raises(TaskArgumentError, match="unknown task 'fecth' \\(did you mean 'fetch'\\?\\)"):
-        planner.plan("fecth(bottle, workbench)")
+        planner.plan(parse_task_text("fecth(bottle, workbench)"))
     with pytest.raises(TaskArgumentError, match=r"fetch\(obj, place\): missing 'place'"):
-        planner.plan("fetch(bottle)")
+        planner.plan(parse_task_text("fetch(bottle)"))
     with pytest.raises(TaskArgumentError, match="'obj' must be an object label, got 3"):
-        planner.plan("fetch(3, kitchen)")
+        planner.plan(parse_task_text("fetch(3, kitchen)"))
 
 
 # -- budgets, depth, determinism ------------------------------------------------------------------------
@@ -320,7 +342,7 @@ tasks:
 
 
 def test_a_5000_step_recursive_plan_needs_no_recursion() -> None:
-    plan = Planner(load_domain_text(COUNTER)).plan("repeat(5000)")
+    plan = Planner(load_domain_text(COUNTER)).plan(parse_task_text("repeat(5000)"))
     assert len(plan.primitives()) == 5000
     assert plan.state["count"] == 5000
     assert plan.stats.max_depth == 5001
@@ -330,7 +352,7 @@ def test_a_5000_step_recursive_plan_needs_no_recursion() -> None:
 
 def test_the_expansion_budget_stops_the_search_and_says_how_far_it_got() -> None:
     with pytest.raises(PlanningBudgetExceeded) as caught:
-        Planner(load_domain_text(COUNTER), max_expansions=100).plan("forever")
+        Planner(load_domain_text(COUNTER), max_expansions=100).plan(parse_task_text("forever"))
     e = caught.value
     assert e.limit == "expansions" and e.expansions == 101
     assert e.steps == 50                                          # tick, forever, tick, forever, ...
@@ -340,14 +362,14 @@ def test_the_expansion_budget_stops_the_search_and_says_how_far_it_got() -> None
 
 def test_the_time_budget_stops_the_search() -> None:
     with pytest.raises(PlanningBudgetExceeded) as caught:
-        Planner(load_domain_text(COUNTER), time_limit=0.0).plan("forever")
+        Planner(load_domain_text(COUNTER), time_limit=0.0).plan(parse_task_text("forever"))
     assert caught.value.limit == "seconds"
     assert caught.value.steps > 0
 
 
 def test_the_same_input_gives_the_same_plan() -> None:
     def run() -> dict[str, object]:
-        out = Planner(load_domain_text(ROUTES)).plan("trip").to_dict()
+        out = Planner(load_domain_text(ROUTES)).plan(parse_task_text("trip")).to_dict()
         out.pop("stats")
         return out
 

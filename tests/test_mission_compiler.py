@@ -20,7 +20,7 @@ from stuart_bt.tree.builder import build
 def plan_for():
     domain = project_domain()
     state = domain.initial_state(lab_world())
-    return lambda text: Planner(domain).plan(text, state)
+    return lambda text: Planner(domain).plan(domain.calls_from_text(text), state)
 
 
 def shape(node) -> list:

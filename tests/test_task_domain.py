@@ -13,7 +13,7 @@ import pytest
 
 from stuart_bt.core.catalogue import LEAVES
 from stuart_bt.core.world import Pose
-from stuart_bt.htn import Plan, Planner, PlanningFailed, State, lab_world
+from stuart_bt.htn import Plan, Planner, PlanningFailed, State, TaskCall, lab_world
 from stuart_bt.htn.domain import check_skill_args
 from stuart_bt.tasks import project_domain
 
@@ -26,8 +26,11 @@ def lab(**changes: Any) -> State:
     return State({**state, **changes})
 
 
-def plan(task: Any, state: State | None = None) -> Plan:
-    return Planner(project_domain()).plan(task, state if state is not None else lab())
+def plan(task: str | list[TaskCall], state: State | None = None) -> Plan:
+    """Plan task text (read by the domain: task calls or JSON TaskIntents) or TaskCalls."""
+    domain = project_domain()
+    calls = domain.calls_from_text(task) if isinstance(task, str) else task
+    return Planner(domain).plan(calls, state if state is not None else lab())
 
 
 def steps(p: Plan) -> list[str]:
@@ -98,8 +101,9 @@ def test_task_intents_plan_like_the_task_text() -> None:
                 "raw_text": "hey stuart go to the kitchen"},
                {"action": "move_relative", "x": 0.5, "raw_text": "step forward"},
                {"action": "turn_around"}]
-    assert steps(plan(intents)) == steps(plan("navigate_to_marker(kitchen); move_relative(0.5); turn_around"))
-    assert steps(plan(json.dumps(intents))) == steps(plan(intents))
+    calls = project_domain().calls_from_intents(intents)
+    assert steps(plan(calls)) == steps(plan("navigate_to_marker(kitchen); move_relative(0.5); turn_around"))
+    assert steps(plan(json.dumps(intents))) == steps(plan(calls))
 
 
 def test_approach_stops_with_the_object_in_front_of_a_shoulder_facing_it() -> None:
@@ -269,7 +273,7 @@ def test_an_unknown_object_with_nowhere_to_look_fails_with_the_reason() -> None:
 
 
 def test_gestures_play_with_something_in_hand_and_need_a_known_name() -> None:
-    plan = Planner(project_domain()).plan("gesture(wave)", lab(held="cup"))
+    plan = Planner(project_domain()).plan([TaskCall.parse("gesture(wave)")], lab(held="cup"))
     assert [(n.name, n.skill_args) for n in plan.primitives()][-1] == ("play_holding", {"play": "wave"})
     assert "hook known_gesture(name='moonwalk') returned false" in failure_of("gesture(moonwalk)")
 
@@ -312,5 +316,6 @@ def test_task_intent_objects_plan_like_their_mappings() -> None:
         raw_text: str = ""
 
     intents = [TaskIntent("find", "cup", raw_text="hey stuart find the cup"), TaskIntent("turn_by_angle", yaw=-0.5)]
-    assert steps(plan(intents)) == steps(plan("find(cup); turn_by_angle(-0.5)"))
-    assert steps(plan(intents[0])) == steps(plan("find(cup)"))
+    calls_from_intents = project_domain().calls_from_intents
+    assert steps(plan(calls_from_intents(intents))) == steps(plan("find(cup); turn_by_angle(-0.5)"))
+    assert steps(plan(calls_from_intents(intents[:1]))) == steps(plan("find(cup)"))

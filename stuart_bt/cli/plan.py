@@ -91,16 +91,22 @@ def _start_state(domain: Any, args: argparse.Namespace) -> Any:
         raise _Refused(f"stuart-bt: {e}") from None
 
 
-def _tasks(text: str, domain: Any) -> Any:
-    """Task text as the planner takes it; an utterance is parsed into its intents first."""
-    if not _is_utterance(text, domain):
-        return text
-    from ..language import Parser
+def _tasks(text: str, domain: Any) -> list[Any]:
+    """The TaskCalls the planner takes: from task text (or a JSON list of TaskIntents), or from
+    the intents an utterance is parsed into."""
+    from ..htn.values import TaskArgumentError
 
-    parsed = Parser(require_wake=False).parse(text)
-    if not parsed.intents:
-        raise _Refused(f"stuart-bt: no command in {text!r} (it reads as conversation)")
-    return [intent.to_dict() for intent in parsed.intents]
+    try:
+        if not _is_utterance(text, domain):
+            return domain.calls_from_text(text)
+        from ..language import Parser
+
+        parsed = Parser(require_wake=False).parse(text)
+        if not parsed.intents:
+            raise _Refused(f"stuart-bt: no command in {text!r} (it reads as conversation)")
+        return domain.calls_from_intents([intent.to_dict() for intent in parsed.intents])
+    except TaskArgumentError as e:
+        raise _Refused(f"stuart-bt: {e}") from None
 
 
 def _plan_or_explain_why_not(planner: Any, tasks: Any, state: Any, args: argparse.Namespace) -> Any:

@@ -6,8 +6,10 @@ defaults), ``primitives`` (tasks bound to one skill of :mod:`stuart_bt.core.cata
 skill arguments, preconditions and effects on the symbolic state) and ``tasks`` (compound tasks
 with ordered methods, each a precondition and ordered subtasks). The htn package, bottom first:
 :mod:`.values` (task calls and values as written), :mod:`.expressions` (compiled preconditions,
-values and templates), this module (the model), :mod:`.load` (reading and checking a file at
-file:line:column), :mod:`.planner`, :mod:`.plan` and :mod:`.explain`.
+values and templates), this module (the model), the file readers (:mod:`.misnamed`,
+:mod:`.read_yaml`, :mod:`.read_expressions`, :mod:`.read_primitives`, :mod:`.read_methods`,
+and :mod:`.load` over them: reading and checking a file at file:line:column), :mod:`.planner`,
+:mod:`.plan` and :mod:`.explain`.
 """
 
 from __future__ import annotations
@@ -257,11 +259,14 @@ class Domain:
         return list(value) if isinstance(value, tuple) else value
 
     def to_call(self, value: Any) -> TaskCall:
-        """A task value: a TaskCall, task text, ``[name, *args]``, or a TaskIntent mapping."""
+        """A task value: a TaskCall, task text, ``[name, *args]``, or a TaskIntent mapping.
+
+        Values of ``task``/``tasks`` parameters come from expressions and task text in all these
+        shapes, so binding accepts each; the planner's own input does not (a list of TaskCall)."""
         if isinstance(value, TaskCall):
             return value
         if isinstance(value, str):
-            calls = self.parse_tasks(value)
+            calls = self.calls_from_text(value)
             if len(calls) != 1:
                 raise TaskArgumentError(f"expected one task, got {len(calls)} in {value!r}")
             return calls[0]
@@ -272,9 +277,10 @@ class Domain:
         raise TaskArgumentError(f"not a task: {format_value(value)}")
 
     # inputs ------------------------------------------------------------------------------------------
-    def parse_tasks(self, text: str) -> list[TaskCall]:
-        """Tasks from text: ``fetch(bottle, workbench)``, several separated by ``;``, or a JSON
-        list of TaskIntents ``[{"action": "navigate_to_marker", "target": "kitchen"}]``."""
+    def calls_from_text(self, text: str) -> list[TaskCall]:
+        """Tasks from text, for the planner (which takes only TaskCalls): ``fetch(bottle,
+        workbench)``, several separated by ``;``, or a JSON list of TaskIntents
+        ``[{"action": "navigate_to_marker", "target": "kitchen"}]`` (what ``stuart-bt plan`` is given)."""
         text = text.strip()
         if text[:1] in "[{":
             try:

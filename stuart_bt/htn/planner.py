@@ -22,10 +22,11 @@ the same domain, state and tasks, the result is always the same.
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from ..core.errors import StuartError
 from ..core.expr import ExprError
 from .domain import (
     MISSING,
@@ -45,7 +46,6 @@ from .plan import Failure, MethodAttempt, Plan, PlanningBudgetExceeded, Planning
 from .state import State
 from .values import TaskArgumentError, TaskCall, format_value
 
-TaskInput = str | TaskCall | Mapping[str, Any] | Sequence[Any]
 DEFAULT_MAX_EXPANSIONS = 500_000
 DEFAULT_TIME_LIMIT = 2.0  # seconds
 _CHECK_EVERY = 64
@@ -81,33 +81,50 @@ class Planner:
         self.time_limit = time_limit
         self.acks = acks
 
-    def plan(self, tasks: TaskInput | Iterable[TaskInput], state: State | Mapping[str, Any] | None = None) -> Plan:
-        """Plan ``tasks`` (task text, a TaskCall, a TaskIntent mapping, or a list of these) from
-        ``state`` (variables it does not set take the domain's declared defaults). Raises TaskArgumentError for tasks
-        that do not exist or do not fit their parameters, PlanningFailed when no plan exists,
-        PlanningBudgetExceeded when a budget runs out. ``state`` is not changed."""
-        calls = self.calls(tasks)
+    def plan(self, calls: Sequence[TaskCall], state: State | Mapping[str, Any] | None = None) -> Plan:
+        """Plan ``calls``, in order, from ``state`` (variables it does not set take the domain's
+        declared defaults); ``state`` is not changed.
+
+        ``calls`` is a list of :class:`TaskCall`, and nothing else: task text and TaskIntents are
+        converted first, by name (:meth:`TaskCall.parse`, :meth:`Domain.calls_from_text`,
+        :meth:`Domain.calls_from_intents`), so what a caller meant is never guessed from the
+        shape of what it passed. Raises :class:`PlannerInputError` for any other shape,
+        TaskArgumentError for tasks that do not exist or do not fit their parameters,
+        PlanningFailed when no plan exists, PlanningBudgetExceeded when a budget runs out."""
+        checked = _checked_calls(calls)
         start = self.domain.initial_state(overrides=state)  # declared variables it lacks take their defaults
-        return _Search(self, calls, start).run()
-
-    def calls(self, tasks: Any) -> list[TaskCall]:
-        """Normalise planner input to TaskCalls."""
-        if isinstance(tasks, str):
-            return self.domain.parse_tasks(tasks)
-        if isinstance(tasks, (TaskCall, Mapping)) or hasattr(tasks, "action"):
-            return [self.domain.to_call(tasks)]
-        if isinstance(tasks, (list, tuple)):
-            if tasks and isinstance(tasks[0], str) and not _looks_like_task_text(tasks[0]):
-                return [self.domain.to_call(tasks)]  # ["fetch", "bottle", "workbench"]
-            calls: list[TaskCall] = []
-            for item in tasks:
-                calls += self.domain.parse_tasks(item) if isinstance(item, str) else [self.domain.to_call(item)]
-            return calls
-        raise TaskArgumentError(f"cannot plan {tasks!r}: give task text, a TaskCall or TaskIntents")
+        return _Search(self, checked, start).run()
 
 
-def _looks_like_task_text(text: str) -> bool:
-    return "(" in text or ";" in text
+class PlannerInputError(StuartError, TypeError):
+    """The planner was given something other than a list of TaskCall: a caller's mistake, told
+    with what was given and the converter that would make it a list of TaskCall."""
+
+    code = "planner_input"
+
+
+def _checked_calls(calls: object) -> list[TaskCall]:
+    """``calls`` as a list, when it is a list (or tuple) of TaskCall; else PlannerInputError."""
+    expected = "Planner.plan takes a list of TaskCall"
+    if not isinstance(calls, (list, tuple)):
+        raise PlannerInputError(f"{expected}; got {_given(calls)}")
+    for i, item in enumerate(calls):
+        if not isinstance(item, TaskCall):
+            raise PlannerInputError(f"{expected}; item {i + 1} of the list is {_given(item)}")
+    return list(calls)
+
+
+def _given(value: object) -> str:
+    """What was passed instead of a list of TaskCall, and the converter for it, if there is one."""
+    shown = repr(value) if len(repr(value)) <= 80 else repr(value)[:77] + "..."
+    if isinstance(value, str):
+        return (f"task text {shown}: convert it with domain.calls_from_text(text) "
+                f"(or [TaskCall.parse(text)] for one task)")
+    if isinstance(value, TaskCall):
+        return f"one TaskCall {value}: put it in a list, [call]"
+    if (isinstance(value, Mapping) and "action" in value) or hasattr(value, "action"):
+        return f"a TaskIntent {shown}: convert TaskIntents with domain.calls_from_intents(intents)"
+    return f"{type(value).__name__} {shown}"
 
 
 class _Search:

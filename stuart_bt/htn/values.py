@@ -29,6 +29,17 @@ class TaskCall:
     args: tuple[Any, ...] = ()
     kwargs: tuple[tuple[str, Any], ...] = ()
 
+    @classmethod
+    def parse(cls, text: str) -> TaskCall:
+        """Exactly one task from its text, ``fetch(bottle, workbench)``: the converter for a
+        caller that holds one task as text (the planner takes only TaskCalls); raises
+        TaskArgumentError for text that does not read as one task. Several tasks, or TaskIntents
+        as JSON: :meth:`Domain.calls_from_text`."""
+        calls = parse_task_text(text)
+        if len(calls) != 1:
+            raise TaskArgumentError(f"expected one task, got {len(calls)} in {text!r}")
+        return calls[0]
+
     def __str__(self) -> str:
         parts = [format_value(a) for a in self.args] + [f"{k}={format_value(v)}" for k, v in self.kwargs]
         return f"{self.name}({', '.join(parts)})"
