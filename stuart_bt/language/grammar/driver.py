@@ -69,6 +69,9 @@ class _CommandReader:
     """One command read left to right: clauses between connectors, with what the words between
     them ask for (a correction, a reordering, a clause held until the next one is in)."""
 
+    __slots__ = ("clause_end", "correct_at", "dead", "held", "hold", "i", "out", "reorder_at", "s", "text", "tokens",
+                 "toks")
+
     def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
         self.text, self.tokens = text, tokens
         self.toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
@@ -120,13 +123,15 @@ class _CommandReader:
     def _in_conversation(self) -> bool:
         """Inside a question or a statement: skip its words (a word said to the robot after a
         comma ends it: "I lost my keys, can you help me find them?", "that's enough, stop")."""
+        if not self.dead:
+            return False
         s, i, t = self.s, self.i, self.toks[self.i]
-        if self.dead and self.toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
+        if self.toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
                 t in ("stop", "halt", "freeze") and may_end(s, i + 1))):
             self.dead = False
-        if self.dead:
-            self.i += 1
-        return self.dead
+            return False
+        self.i += 1
+        return True
 
     def _subordinate_opening(self) -> tuple[str, bool] | None:
         """Past "before you", "as soon as you", "when/once/after you('ve)": (the opening word,

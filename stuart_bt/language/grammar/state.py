@@ -45,7 +45,7 @@ class Defaults:
     vague_turn_deg: float = 30.0
 
 
-@dataclass
+@dataclass(slots=True)
 class ParseState:
     """One parse: the tokens, what came before (for "it", "there" and ellipsis) and settings."""
 
