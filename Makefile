@@ -19,7 +19,7 @@ $(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision]"
+	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision,hearing]"
 	touch $@
 
 $(VENV)/.stamp-lint: pyproject.toml setup.py | $(BIN)/python
@@ -27,7 +27,7 @@ $(VENV)/.stamp-lint: pyproject.toml setup.py | $(BIN)/python
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
-	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision]"
+	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision,hearing]"
 	touch $@
 
 system-deps:

@@ -12,6 +12,8 @@ have_cmd espeak-ng  || missing+=(espeak-ng)         # speech audio (tts daemon, 
 have_lib libEGL.so.1      || missing+=(libegl1)     # MuJoCo headless rendering (MUJOCO_GL=egl)
 have_lib libEGL_mesa.so.0 || missing+=(libegl-mesa0 libgl1-mesa-dri)
 have_cmd chromium   || missing+=(chromium)          # browser tests of the web view (Playwright drives it)
+have_cmd sox        || missing+=(sox)               # noisy copies of spoken test commands (hearing tests)
+have_lib libportaudio.so.2 || missing+=(libportaudio2)  # the microphone source (sounddevice)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif have_cmd sudo; then SUDO="sudo"; else

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-pytest_plugins = ["pytester", "session_guard", "web_support", "unitree_fake"]  # the last two: shared fixtures
+# the last three: shared fixtures
+pytest_plugins = ["pytester", "session_guard", "web_support", "unitree_fake", "speech_support"]
 
 
 def pytest_configure(config: pytest.Config) -> None:

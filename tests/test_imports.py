@@ -22,6 +22,7 @@ LAYERS = (
     "core",          # clock, events, blackboard, world state, expressions, catalogue, errors, JSON files
     "maps",          # occupancy grid, inflation, A* paths, map and marker files (core and numpy only)
     "daemon",        # the line protocol, the supervisor, the daemon client
+    "hearing",       # sound sources, voice activity, speech recognition
     "tree",          # YAML trees: loading, checking, building, drawing
     "language",      # wake filter, numbers, the grammar, resolving names
     "conversation",  # the reply interface and its backends

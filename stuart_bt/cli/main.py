@@ -189,6 +189,7 @@ def _load(file: str, markers: str | None) -> Any:
 # validate, show and run start fast. name -> (module with add_command(subparsers), one-line summary)
 VOICE_COMMANDS = {
     "parse": ("stuart_bt.cli.parse", "parse what was said into intents (JSON)"),
+    "hear": ("stuart_bt.cli.hear", "hear audio files: transcript, confidence, intents (JSON lines)"),
     "plan": ("stuart_bt.cli.plan", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.cli.mission", "run an utterance end to end"),
     "chat": ("stuart_bt.cli.chat", "talk to the robot, one utterance per line"),
