@@ -30,11 +30,13 @@ import time
 from collections.abc import Callable
 from typing import Any, TextIO
 
+from ..core.errors import StuartError
 from ..core.events import Event
 from ..mission.executor import Mission, MissionExecutor, MissionOptions
 from ..run.executor import RunOutcome
 from ..tree.render import render
 from ..tree.spec import NodeSpec, TreeSpec
+from .hear import add_hearing_arguments
 from .mission import add_llm_arguments, llm_options
 
 EXIT_OK, EXIT_FAILED, EXIT_INTERRUPTED = 0, 1, 130
@@ -126,6 +128,10 @@ def describe(event: Event) -> str | None:
         intents = ", ".join(_intent(i) for i in d.get("intents") or [])
         extra = " instead" if d.get("replace") and d.get("kind") == "tasks" else ""
         return f"heard     {d.get('text')!r} -> {d.get('kind')}{extra}" + (f": {intents}" if intents else "")
+    if event.kind == "heard":
+        how = f"confidence {d.get('confidence', 0):.2f}, {d.get('latency_s', 0):.1f} s after the speech ended"
+        ignored = "" if d.get("acted") else "; ignored: the robot was speaking and it was no stop"
+        return f"hearing   {d.get('text')!r} ({how}){ignored}"
     if event.kind == "mission":
         extra = d.get("reason") or d.get("status") or ", ".join(str(t) for t in d.get("tasks") or [])
         return f"mission {d.get('id')} {d.get('phase')}" + (f": {extra}" if extra else "")
@@ -265,17 +271,27 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     return p
 
 
-def _arguments(p: argparse.ArgumentParser) -> None:
+def _arguments(p: argparse.ArgumentParser, listening: bool = False) -> None:
+    """The chat's options; ``listening`` (``stuart-bt listen``): the sound source is required."""
     p.add_argument("--backend", choices=("dry", "sim"), default="dry", help="skill backend (default dry)")
     p.add_argument("--speed", type=float, help="dry: clock seconds per wall second (default 1)")
     p.add_argument("--no-wake", action="store_true", help="no 'Hey Stuart' needed (a typed console)")
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
     p.add_argument("--max-repairs", type=int, default=2, metavar="N", help="repairs per mission (default 2)")
+    sources = "mic, mic:DEVICE, file:PATH, - for raw 16 kHz PCM on stdin"
+    if listening:
+        p.add_argument("--source", dest="hear", required=True, metavar="SOURCE", help=f"what to hear: {sources}")
+    else:
+        p.add_argument("--hear", metavar="SOURCE", help=f"also hear SOURCE ({sources}): what is heard is said "
+                                                         "like a typed line")
+    add_hearing_arguments(p)
     add_llm_arguments(p)
 
 
 def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO | None = None) -> int:
-    """Run the chat until :quit, end of input or Ctrl-C; daemons are always shut down."""
+    """Run the chat until :quit, end of input or Ctrl-C; daemons are always shut down. With
+    ``--hear``, what is heard is said too; when the sound comes on stdin (``-``), or for
+    ``stuart-bt listen``, the chat ends when the sound does."""
     stdin, out = stdin or sys.stdin, out or sys.stdout
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start,
                              require_wake=not args.no_wake, max_repairs=args.max_repairs,
@@ -283,34 +299,69 @@ def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO 
                              propose_tasks=args.propose)
     try:
         chat = Chat(options, out)
-    except (ValueError, RuntimeError) as e:  # bad options, a missing model file
+        listener = _listener(args, chat)
+    except (StuartError, ValueError, RuntimeError) as e:  # bad options, a missing model file, no microphone
         print(f"stuart-bt: {e}", file=sys.stderr)
         return EXIT_FAILED
-    interactive = stdin.isatty()
     status = EXIT_OK
     previous = _interrupt_handlers()
-    lines = _lines(stdin)
     try:
         chat.start()
-        while True:
-            if interactive:
-                out.write(PROMPT)
-                out.flush()
-            line = _next(lines)
-            if line is None:  # end of input: finish what was asked
-                chat.wait_idle(EOF_WAIT)
-                break
-            if not chat.handle(line):
-                break
+        if listener is not None:
+            listener.start()
+        if listener is not None and (args.hear == "-" or getattr(args, "listen_only", False)):
+            _until_heard(chat, listener)
+        else:
+            _converse(chat, stdin, out)
     except KeyboardInterrupt:
         status = EXIT_INTERRUPTED
     finally:
         try:
+            if listener is not None:
+                listener.close()
             chat.close()
         finally:
             for signum, handler in previous.items():
                 signal.signal(signum, handler)
+    if status == EXIT_OK and listener is not None and listener.error:
+        status = EXIT_FAILED
     return status
+
+
+def _converse(chat: Chat, stdin: TextIO, out: TextIO) -> None:
+    """Typed lines until :quit or the end of input (then what was asked is finished)."""
+    interactive = stdin.isatty()
+    lines = _lines(stdin)
+    while True:
+        if interactive:
+            out.write(PROMPT)
+            out.flush()
+        line = _next(lines)
+        if line is None:  # end of input: finish what was asked
+            chat.wait_idle(EOF_WAIT)
+            return
+        if not chat.handle(line):
+            return
+
+
+def _until_heard(chat: Chat, listener: Any) -> None:
+    """Hear until the sound ends (a file, a closed pipe) or Ctrl-C, then finish what was asked."""
+    while not listener.done.wait(SLICE):
+        pass
+    chat.wait_idle(EOF_WAIT)
+
+
+def _listener(args: argparse.Namespace, chat: Chat) -> Any:
+    """The hearing pipeline in front of the chat's robot, if ``--hear`` asked for one."""
+    if not args.hear:
+        return None
+    from ..hearing.sources import open_source
+    from ..mission.listening import Listener
+    from .hear import make_recogniser, vocabulary_of
+
+    recogniser = make_recogniser(args)
+    vocabulary = vocabulary_of(chat.robot.resolver, "Stuart")
+    return Listener(chat.robot, open_source(args.hear, live=True), recogniser, vocabulary)
 
 
 def _lines(stdin: TextIO) -> queue.Queue[str | None]:

@@ -190,6 +190,7 @@ def _load(file: str, markers: str | None) -> Any:
 VOICE_COMMANDS = {
     "parse": ("stuart_bt.cli.parse", "parse what was said into intents (JSON)"),
     "hear": ("stuart_bt.cli.hear", "hear audio files: transcript, confidence, intents (JSON lines)"),
+    "listen": ("stuart_bt.cli.listen", "hear a microphone or a recording and run missions from it"),
     "plan": ("stuart_bt.cli.plan", "plan a task or an utterance with the HTN domain"),
     "mission": ("stuart_bt.cli.mission", "run an utterance end to end"),
     "chat": ("stuart_bt.cli.chat", "talk to the robot, one utterance per line"),

@@ -10,11 +10,14 @@ over the robot's own voice is marked, and a recogniser's empty or no-speech resu
 
 from __future__ import annotations
 
+import queue
+import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .audio import AudioError
 from .recognisers import Recogniser, Transcript
 from .sources import Source
 from .vad import Segment, Segmenter
@@ -59,22 +62,44 @@ def transcribe(recogniser: Recogniser, samples: np.ndarray, vocabulary: Vocabula
 
 def hear(source: Source, recogniser: Recogniser, vocabulary: Vocabulary | None = None,
          segmenter: Segmenter | None = None) -> Iterator[Heard]:
-    """Every utterance in ``source`` that holds speech, transcribed, in order."""
+    """Every utterance in ``source`` that holds speech, transcribed, in order. A live source is
+    cut on its own thread while utterances are recognised, so the voice detector sees each block
+    when it is heard (what the robot was doing then, e.g. speaking, is what it was doing when
+    the sound was made) and the next utterance is cut while the last one is still recognised."""
     segmenter = segmenter or Segmenter()
+    cuts = _cut_live(source, segmenter) if source.live else _cut(source, segmenter)
     try:
-        for block in source.blocks():
-            for segment in segmenter.feed(block):
-                heard = _heard(recogniser, segment, vocabulary, source.name)
-                if heard is not None:
-                    yield heard
-        for segment in segmenter.flush():
-            heard = _heard(recogniser, segment, vocabulary, source.name)
-            if heard is not None:
+        for segment, ended_at in cuts:
+            heard = transcribe(recogniser, segment.samples, vocabulary, segment.start_s, source.name,
+                               segment.over_robot_speech, ended_at)
+            if is_speech(heard.transcript):
                 yield heard
     finally:
         source.close()
 
 
-def _heard(recogniser: Recogniser, segment: Segment, vocabulary: Vocabulary | None, source: str) -> Heard | None:
-    heard = transcribe(recogniser, segment.samples, vocabulary, segment.start_s, source, segment.over_robot_speech)
-    return heard if is_speech(heard.transcript) else None
+def _cut(source: Source, segmenter: Segmenter) -> Iterator[tuple[Segment, float]]:
+    for block in source.blocks():
+        for segment in segmenter.feed(block):
+            yield segment, time.perf_counter()
+    for segment in segmenter.flush():
+        yield segment, time.perf_counter()
+
+
+def _cut_live(source: Source, segmenter: Segmenter) -> Iterator[tuple[Segment, float]]:
+    cuts: queue.Queue[tuple[Segment, float] | BaseException | None] = queue.Queue()
+
+    def cut() -> None:
+        try:
+            for item in _cut(source, segmenter):
+                cuts.put(item)
+        except AudioError as e:  # a source that fails (a device unplugged): the reader raises it
+            cuts.put(e)
+        finally:
+            cuts.put(None)
+
+    threading.Thread(target=cut, name="hearing-vad", daemon=True).start()
+    while (item := cuts.get()) is not None:
+        if isinstance(item, BaseException):
+            raise item
+        yield item

@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import queue
 import sys
+import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,25 +43,32 @@ class Source(Protocol):
 class FileSource:
     """Files (or folders of audio files, in name order) one after another, with :data:`GAP_S`
     of silence between them. A file that cannot be read raises :class:`AudioError` when its turn
-    comes, naming it."""
+    comes, naming it. ``live=True`` plays them at the speed they were spoken (a recording played
+    to a listening robot, as a person would have said it), else as fast as they can be read."""
 
-    live = False
-
-    def __init__(self, paths: list[str | Path]) -> None:
+    def __init__(self, paths: list[str | Path], live: bool = False) -> None:
         self.paths = [p for path in paths for p in _expand(Path(path))]
         self.name = f"file:{paths[0]}" if len(paths) == 1 else f"files ({len(self.paths)})"
+        self.live = live
+        self._closed = False
 
     def blocks(self) -> Iterator[np.ndarray]:
         import numpy as np
 
         step = int(RATE * BLOCK_S)
+        started, played = time.monotonic(), 0
         for n, path in enumerate(self.paths):
-            if n:
-                yield from _split(np.zeros(int(RATE * GAP_S), np.int16), step)
-            yield from _split(read_audio(path), step)
+            clips = [np.zeros(int(RATE * GAP_S), np.int16)] if n else []
+            for block in _split(np.concatenate([*clips, read_audio(path)]), step):
+                if self._closed:
+                    return
+                if self.live:  # not ahead of the wall clock: the block is "heard" when it would have been said
+                    time.sleep(max(0.0, started + played / RATE - time.monotonic()))
+                played += len(block)
+                yield block
 
     def close(self) -> None:
-        pass
+        self._closed = True
 
 
 class PcmSource:
@@ -129,22 +137,23 @@ class MicSource:
         self._queue.put(None)
 
 
-SOURCES: dict[str, Callable[[str], Source]] = {
-    "file": lambda arg: FileSource([arg]),
-    "mic": lambda arg: MicSource(arg or None),
-    "-": lambda arg: PcmSource(),
+SOURCES: dict[str, Callable[[str, bool], Source]] = {
+    "file": lambda arg, live: FileSource([arg], live),
+    "mic": lambda arg, live: MicSource(arg or None),
+    "-": lambda arg, live: PcmSource(),
 }
 
 
-def open_source(spec: str) -> Source:
-    """A source by name: ``file:PATH``, ``mic``, ``mic:DEVICE``, ``-``; a bare path is a file."""
+def open_source(spec: str, live: bool = False) -> Source:
+    """A source by name: ``file:PATH``, ``mic``, ``mic:DEVICE``, ``-``; a bare path is a file.
+    ``live``: a file plays at the speed it was spoken (for a listening robot)."""
     name, _, arg = spec.partition(":")
     if spec == "-":
         return PcmSource()
     if name in SOURCES:
-        return SOURCES[name](arg)
+        return SOURCES[name](arg, live)
     if Path(spec).exists():
-        return FileSource([spec])
+        return FileSource([spec], live)
     raise AudioError(f"no sound source {spec!r}{did_you_mean(name, list(SOURCES))}; sources are file:PATH, "
                      f"mic[:DEVICE], - (raw PCM on stdin)")
 

@@ -8,9 +8,11 @@ or a noise the detector takes for a voice). The frames just before the start are
 consonant matters ("stop" without its s is "top").
 
 While the robot itself speaks (``speaking = True``, set from the tts daemon's activity), the
-segmenter keeps listening but marks what it cuts (``Segment.over_robot_speech``), so that the
-pipeline acts on such an utterance only when it is a stop: the robot's own voice can never
-trigger a command, and a person can still interrupt it (barge-in, docs/hearing.md).
+segmenter keeps listening but marks an utterance that began while the robot spoke, or was
+heard mostly over its voice (``Segment.over_robot_speech``), so that the pipeline acts on such
+an utterance only when it is a stop: the robot's own voice can never trigger a command, a person
+can still interrupt it (barge-in), and a person who goes on talking as the robot starts a short
+sentence is still heard (docs/hearing.md).
 """
 
 from __future__ import annotations
@@ -73,7 +75,8 @@ class Segmenter:
         self._frames: list[np.ndarray] = []  # the utterance being heard ([] when idle)
         self._voiced_frames = 0
         self._trailing = 0  # unvoiced frames at the end of the utterance so far
-        self._over_speech = False
+        self._started_over_speech = False  # the utterance began while the robot spoke
+        self._speech_frames = 0  # its frames heard while the robot spoke
         self._t = 0  # samples consumed
         self._start = 0
 
@@ -106,7 +109,7 @@ class Segmenter:
             self._idle(frame, voiced)
             return None
         self._frames.append(frame)
-        self._over_speech = self._over_speech or self.speaking
+        self._speech_frames += self.speaking
         if voiced:
             self._voiced_frames += 1
             self._trailing = 0
@@ -126,7 +129,8 @@ class Segmenter:
             self._start = self._t - FRAME * len(self._frames)
             self._voiced_frames = sum(self._recent)
             self._trailing = 0
-            self._over_speech = self.speaking
+            self._started_over_speech = self.speaking
+            self._speech_frames = len(self._frames) if self.speaking else 0
             self._pre.clear()
             self._recent.clear()
 
@@ -134,9 +138,9 @@ class Segmenter:
         import numpy as np
 
         keep = len(self._frames) - max(0, self._trailing - round(0.2 / 0.03))  # keep 0.2 s of the silence after
-        frames, voiced, over = self._frames[:keep], self._voiced_frames, self._over_speech
-        start = self._start
-        self._frames, self._voiced_frames, self._trailing, self._over_speech = [], 0, 0, False
+        frames, voiced, start = self._frames[:keep], self._voiced_frames, self._start
+        over = self._started_over_speech or 2 * self._speech_frames > len(self._frames)
+        self._frames, self._voiced_frames, self._trailing, self._speech_frames = [], 0, 0, 0
         if voiced * 0.03 < self.options.min_speech_s:
             return None
         samples = np.concatenate(frames)

@@ -34,6 +34,7 @@ plan to its end.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import partial
 from importlib.resources import files
@@ -171,15 +172,18 @@ class MissionExecutor:
         return {"succeeded": "SUCCESS", "stopped": "STOPPED"}.get(last, "FAILURE")
 
     # -- input --------------------------------------------------------------------------------------
-    def submit(self, utterance: str, woken: bool = False) -> Command:
+    def submit(self, utterance: str, woken: bool = False, *, source: str = "typed",
+               heard: Mapping[str, Any] | None = None) -> Command:
         """Take one utterance (any thread); returns at once with what it was understood as.
         ``woken``: treat it as if the wake phrase had been said (an input that filtered it already).
+        ``source`` says where it came from (``typed``, ``web``, ``ros``, a hearing source such as
+        ``mic:...``); ``heard``, for speech, what hearing adds (``audio_s``, ``confidence``, ...).
         The ``utterance`` event's ``parsed`` holds every intent the grammar found (the
         ``stuart-bt parse`` intents, a leading ``stop`` included); ``intents`` the ones to plan."""
         command = interpret(self.parser, utterance, woken)
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
                             intents=[i.to_dict() for i in command.intents],
-                            parsed=[i.to_dict() for i in command.parse.intents])
+                            parsed=[i.to_dict() for i in command.parse.intents], source=source, **(heard or {}))
         if self.offers.answer(command):
             return command
         if command.kind == IGNORE:

@@ -221,7 +221,7 @@ class Bridge:
         def on_message(msg: String) -> None:
             text = self._text(topic, msg)
             if text is not None:
-                self.robot.submit(text, woken=woken)
+                self.robot.submit(text, woken=woken, source=f"ros:{topic}")
         return on_message
 
     def _on_pick_target(self, msg: String) -> None:
@@ -233,4 +233,4 @@ class Bridge:
                 self.log.warning("confirm on pick_target: nothing is running, so no pick waits for it")
                 self.robot.events.publish("warning", message="ros: confirm received but no pick is waiting")
             return
-        self.robot.submit(f"pick up the {text}", woken=True)
+        self.robot.submit(f"pick up the {text}", woken=True, source=f"ros:{t.PICK_TARGET}")

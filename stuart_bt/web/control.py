@@ -242,20 +242,20 @@ class MissionControl:
                 "can_continue": self.robot.halted is not None}
 
     def say(self, text: str) -> dict[str, Any]:
-        command = self.robot.submit(text)
+        command = self.robot.submit(text, source="web")
         return {"kind": command.kind, "intents": [i.to_dict() for i in command.intents]}
 
     def run(self) -> None:
         raise ControlError("a mission server runs what is said; type it in the console")
 
     def stop(self) -> None:
-        self.robot.submit(f"{WAKE}, stop")
+        self.robot.submit(f"{WAKE}, stop", source="web")
 
     def resume(self) -> None:
-        self.robot.submit(f"{WAKE}, continue")
+        self.robot.submit(f"{WAKE}, continue", source="web")
 
     def go_to(self, marker: str) -> None:
-        self.robot.submit(f"{WAKE}, go to the {marker.replace('_', ' ')}")
+        self.robot.submit(f"{WAKE}, go to the {marker.replace('_', ' ')}", source="web")
 
     def walk(self, x: float, y: float, yaw: float | None) -> None:
         raise ControlError("walking to a point needs a tree server (stuart-bt serve TREE); say where to go instead")

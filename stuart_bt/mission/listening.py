@@ -1,0 +1,126 @@
+"""Hearing in front of a mission executor: what is heard is said, like typed text.
+
+A :class:`Listener` runs the hearing pipeline (source -> utterances -> transcripts,
+:mod:`stuart_bt.hearing`) on its own thread and submits each transcript to the executor with
+where it came from and how sure the recogniser was, so missions, chat, the web view, the report
+and the ROS bridge work from speech unchanged. Every utterance heard is also a ``heard`` event,
+the ones not acted on included, with the reason.
+
+**The robot's own voice never commands it.** :class:`RobotVoice` follows the tts daemon's
+requests on the event stream; while one is playing, the segmenter marks what it cuts, and such
+an utterance is acted on only when it is a stop ("Hey Stuart, stop" while the robot talks:
+barge-in). Anything else heard then is dropped as ``over_robot_speech``.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from ..core.events import Event, EventStream
+from ..hearing.audio import AudioError
+from ..hearing.pipeline import Heard, hear
+from ..hearing.vad import Segmenter
+from .commands import STOP, interpret
+
+if TYPE_CHECKING:
+    from ..hearing.recognisers import Recogniser
+    from ..hearing.sources import Source
+    from ..hearing.vocabulary import Vocabulary
+    from .executor import MissionExecutor
+
+SPEECH_COMMANDS = ("say",)  # tts commands during which the robot's voice is in the room
+
+
+class RobotVoice:
+    """Whether the robot is talking now, read from the event stream (no reach into the executor):
+    a tts ``say`` command starts it, that request's ``done`` or ``error`` (or a tts ``stop``)
+    ends it. ``on_change(speaking)`` is called on every change."""
+
+    def __init__(self, events: EventStream, on_change: Callable[[bool], None]) -> None:
+        self._playing: set[str] = set()
+        self._lock = threading.Lock()
+        self._on_change = on_change
+        events.subscribe(self.on_event)
+
+    @property
+    def speaking(self) -> bool:
+        with self._lock:
+            return bool(self._playing)
+
+    def on_event(self, event: Event) -> None:
+        d = event.data
+        if d.get("family") != "tts" or event.kind not in ("command", "daemon"):
+            return
+        with self._lock:
+            before = bool(self._playing)
+            if event.kind == "command" and d.get("cmd") in SPEECH_COMMANDS:
+                self._playing.add(str(d.get("id")))
+            elif event.kind == "command" and d.get("cmd") == "stop":
+                self._playing.clear()
+            elif event.kind == "daemon" and d.get("type") in ("done", "error"):
+                self._playing.discard(str(d.get("id")))
+            now = bool(self._playing)
+        if now != before:
+            self._on_change(now)
+
+
+class Listener:
+    """Hears ``source`` until it ends or :meth:`close`, submitting what it hears to ``robot``."""
+
+    def __init__(self, robot: MissionExecutor, source: Source, recogniser: Recogniser,
+                 vocabulary: Vocabulary | None = None, segmenter: Segmenter | None = None) -> None:
+        self.robot = robot
+        self.source = source
+        self.recogniser = recogniser
+        self.vocabulary = vocabulary
+        self.segmenter = segmenter or Segmenter()
+        self.voice = RobotVoice(robot.events, self._robot_speaking)
+        self.error: str | None = None
+        self.done = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="hearing", daemon=True)
+
+    def start(self) -> Listener:
+        self._thread.start()
+        return self
+
+    def close(self, timeout: float = 5.0) -> None:
+        """Stop hearing: the source is closed, the thread ends after the utterance in hand."""
+        self.source.close()
+        if self._thread.is_alive():
+            self._thread.join(timeout)
+
+    def _robot_speaking(self, speaking: bool) -> None:
+        self.segmenter.speaking = speaking
+
+    def _run(self) -> None:
+        try:
+            for heard in hear(self.source, self.recogniser, self.vocabulary, self.segmenter):
+                self.take(heard)
+        except AudioError as e:
+            self.error = e.reason
+            self.robot.events.publish("warning", message=f"hearing stopped: {e.reason}")
+        finally:
+            self.done.set()
+
+    def take(self, heard: Heard) -> None:
+        """Act on one utterance heard (also called directly by a source that hears on its own)."""
+        fields = hearing_fields(heard)
+        if heard.over_robot_speech and interpret(self.robot.parser, heard.text).kind != STOP:
+            self.robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
+            return
+        self.robot.events.publish("heard", acted=True, **fields)
+        self.robot.submit(heard.text, source=heard.source, heard={k: fields[k] for k in HEARD_IN_UTTERANCE})
+
+
+HEARD_IN_UTTERANCE = ("audio_s", "confidence", "no_speech", "latency_s", "engine")
+
+
+def hearing_fields(heard: Heard) -> dict[str, Any]:
+    """What an event says about an utterance heard (rounded; strict JSON)."""
+    t = heard.transcript
+    return {"text": heard.text, "source": heard.source, "audio_s": round(t.audio_s, 3),
+            "confidence": round(t.confidence, 4), "no_speech": round(t.no_speech, 4),
+            "latency_s": round(heard.latency_s, 3), "engine": t.engine, "start_s": round(heard.start_s, 3),
+            "over_robot_speech": heard.over_robot_speech}
