@@ -12,8 +12,8 @@ import time
 
 import numpy as np
 import pytest
-from speech_support import NEEDS_ESPEAK, speak
 
+from speech_support import NEEDS_ESPEAK, speak
 from stuart_bt.core.events import Event, EventRecorder
 from stuart_bt.hearing.audio import RATE, read_audio
 from stuart_bt.hearing.sources import PcmSource
