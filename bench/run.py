@@ -25,7 +25,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from . import htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, soak, tick_overhead, unitree, web
+from . import hearing, htn, ik, llm, mission, parse, perception, ros, roundtrip, sim, soak, tick_overhead, unitree, web
 from .result import Result
 
 BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
@@ -35,6 +35,7 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
     sim.NAME: sim.run,
     htn.NAME: htn.run,
     parse.NAME: parse.run,
+    hearing.NAME: hearing.run,
     mission.NAME: mission.run,
     llm.NAME: llm.run,
     ros.NAME: ros.run,

@@ -55,6 +55,24 @@ ARM_JOINT_WORDS = ("shoulder", "elbow", "wrist", "_hand_")
 Hook = Callable[["LiveRun"], Any]
 
 
+VOICES = ("en-us", "en-gb+m3", "en-us+f2", "en-gb-x-rp", "en-us+m3", "en-gb+f3")  # espeak-ng voices, varied
+
+
+def speak(text: str, path: str | Path, voice: str = "en-us", speed: int = 160) -> Path:
+    """``text`` spoken by espeak-ng into the WAV ``path``: real audio for testing what the robot
+    hears (``stuart-bt hear``, ``listen``), made at test time instead of kept as recordings.
+    ``voice`` is an espeak-ng voice (:data:`VOICES` are a varied set), ``speed`` words per minute."""
+    import shutil
+    import subprocess
+
+    espeak = shutil.which("espeak-ng")
+    if espeak is None:
+        raise FileNotFoundError("espeak-ng is not installed (apt-get install espeak-ng; make test installs it)")
+    subprocess.run([espeak, "-v", voice, "-s", str(speed), "-w", str(path), text], check=True, timeout=30,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    return Path(path)
+
+
 def lab_markers() -> Path:
     """The lab's marker map shipped with the package."""
     return Path(str(resources.files("stuart_bt.sim") / "maps" / "lab_markers.json"))

@@ -11,8 +11,9 @@ import sys
 import numpy as np
 import pytest
 
-from speech_support import NEEDS_ESPEAK, joined, speak
+from speech_support import NEEDS_ESPEAK, joined
 from stuart_bt.hearing.audio import read_audio
+from stuart_bt.testing import speak
 
 pytest.importorskip("faster_whisper", reason="the 'hearing' extra is not installed (make test installs it)")
 PARSE_FIELDS = {"utterance", "wake", "command", "intents", "conversational"}

@@ -9,9 +9,10 @@ import subprocess
 import numpy as np
 import pytest
 
-from speech_support import NEEDS_ESPEAK, NEEDS_SOX, SOX, speak
+from speech_support import NEEDS_ESPEAK, NEEDS_SOX, SOX
 from stuart_bt.hearing.audio import RATE, AudioError, read_audio, resample, write_wav
 from stuart_bt.hearing.sources import BLOCK_S, FileSource, PcmSource, open_source
+from stuart_bt.testing import speak
 
 pytest.importorskip("av", reason="the 'hearing' extra is not installed (make test installs it)")
 

@@ -7,11 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from speech_support import NEEDS_ESPEAK, VOICES, speak, with_noise
+from speech_support import NEEDS_ESPEAK
 from stuart_bt.hearing.audio import RATE, read_audio
+from stuart_bt.hearing.audio import add_noise as with_noise
 from stuart_bt.hearing.pipeline import hear, is_speech, transcribe
 from stuart_bt.hearing.sources import FileSource
 from stuart_bt.language.parse import Parser
+from stuart_bt.testing import VOICES, speak
 
 # (said, the (action, target) intents it means). One per command family; voices and speeds vary.
 COMMANDS = [

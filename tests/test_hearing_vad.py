@@ -6,9 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from speech_support import NEEDS_ESPEAK, joined, speak
+from speech_support import ESPEAK, NEEDS_ESPEAK, joined
 from stuart_bt.hearing.audio import RATE, read_audio
 from stuart_bt.hearing.vad import Segmenter, SegmenterOptions
+from stuart_bt.testing import speak
 
 pytest.importorskip("webrtcvad", reason="the 'hearing' extra is not installed (make test installs it)")
 
@@ -23,7 +24,7 @@ def _cut(samples: np.ndarray, segmenter: Segmenter | None = None, block: int = 4
 
 @pytest.fixture(scope="module")
 def commands(tmp_path_factory) -> list[np.ndarray]:
-    if speak.__module__ and not __import__("shutil").which("espeak-ng"):
+    if ESPEAK is None:
         pytest.skip("espeak-ng is not installed (make test installs it)")
     folder = tmp_path_factory.mktemp("spoken")
     texts = ("Hey Stuart, go to the kitchen", "turn left", "Hey Stuart, stop")

@@ -13,12 +13,13 @@ import time
 import numpy as np
 import pytest
 
-from speech_support import NEEDS_ESPEAK, speak
+from speech_support import NEEDS_ESPEAK
 from stuart_bt.core.events import Event, EventRecorder
 from stuart_bt.hearing.audio import RATE, read_audio
 from stuart_bt.hearing.sources import PcmSource
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 from stuart_bt.mission.listening import Listener
+from stuart_bt.testing import speak
 
 pytestmark = NEEDS_ESPEAK
 
