@@ -111,15 +111,15 @@ def _rss_mb() -> float:
 
 
 def run(quick: bool = False) -> list[Result]:
-    from stuart_bt.cli.hear import _lab_markers, vocabulary_of
     from stuart_bt.core import gestures
     from stuart_bt.hearing.audio import add_noise
     from stuart_bt.hearing.recognisers import make_recogniser
     from stuart_bt.language.parse import Parser
     from stuart_bt.language.resolve import Resolver
+    from stuart_bt.testing import lab_markers
 
-    resolver = Resolver.from_files(_lab_markers())
-    vocabulary = vocabulary_of(resolver, "Stuart")
+    resolver = Resolver.from_files(lab_markers())
+    vocabulary = resolver.vocabulary()
     parser = Parser()
     texts = corpus(resolver.markers, resolver.objects, gestures.names())
     if quick:

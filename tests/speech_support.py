@@ -38,7 +38,7 @@ def recogniser():
 @pytest.fixture(scope="session")
 def lab_vocabulary():
     """What the robot expects in the lab: its markers, objects and gestures."""
-    from stuart_bt.cli.hear import _lab_markers, vocabulary_of
     from stuart_bt.language.resolve import Resolver
+    from stuart_bt.testing import lab_markers
 
-    return vocabulary_of(Resolver.from_files(_lab_markers()), "Stuart")
+    return Resolver.from_files(lab_markers()).vocabulary()

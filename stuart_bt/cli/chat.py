@@ -357,10 +357,10 @@ def _listener(args: argparse.Namespace, chat: Chat) -> Any:
         return None
     from ..hearing.sources import open_source
     from ..mission.listening import Listener
-    from .hear import make_recogniser, vocabulary_of
+    from .hear import make_recogniser
 
     recogniser = make_recogniser(args)
-    vocabulary = vocabulary_of(chat.robot.resolver, "Stuart")
+    vocabulary = chat.robot.resolver.vocabulary()
     return Listener(chat.robot, open_source(args.hear, live=True), recogniser, vocabulary)
 
 

@@ -79,7 +79,7 @@ def cmd_hear(args: argparse.Namespace) -> int:
     except (AudioError, OSError, ValueError) as e:
         print(f"stuart-bt hear: {e}", file=sys.stderr)
         return EXIT_FAILED
-    vocabulary = vocabulary_of(resolver, args.name)
+    vocabulary = resolver.vocabulary(args.name)
     parser = Parser(args.name, require_wake=not args.no_wake)
     resolve = resolver if (args.markers or args.objects) else None
     write = _writer()
@@ -89,16 +89,6 @@ def cmd_hear(args: argparse.Namespace) -> int:
             failed = failed or "error" in out
             write(to_json(out, ensure_ascii=False))
     return EXIT_FAILED if failed else EXIT_OK
-
-
-def vocabulary_of(resolver: Any, name: str) -> Any:
-    """What to expect: the resolver's places (names and display names), its object labels, and
-    the gesture library."""
-    from ..core import gestures
-    from ..hearing.vocabulary import Vocabulary
-
-    places = [n.replace("_", " ") for n in resolver.markers] + [d for d in resolver.markers.values() if d]
-    return Vocabulary.of(name, places, resolver.objects, gestures.names())
 
 
 def _hear_one(path: str, split: bool, recogniser: Any, vocabulary: Any, parser: Any,

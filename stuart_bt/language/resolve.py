@@ -36,6 +36,7 @@ from typing import Any
 
 from ..core import gestures
 from ..core.world import Marker
+from ..hearing.vocabulary import Vocabulary
 from ..maps.markers import load_markers
 from .intents import FIND, GESTURE, NAVIGATE, PICK, TaskIntent
 from .numbers import digits_for_words
@@ -177,6 +178,12 @@ class Resolver:
         markers = load_markers(markers_file) if markers_file else {}
         objects = load_object_labels(objects_file) if objects_file else DEFAULT_OBJECTS
         return cls(markers, objects)
+
+    def vocabulary(self, name: str = "Stuart") -> Vocabulary:
+        """The words to expect when hearing (docs/hearing.md): these places (names and display
+        names), these object labels, and the gesture library; resolving and hearing then agree."""
+        places = [n.replace("_", " ") for n in self.markers] + [d for d in self.markers.values() if d]
+        return Vocabulary.of(name, places, self.objects, gestures.names())
 
     # -- tables ------------------------------------------------------------------------------------
     def _aliases_for_markers(self) -> dict[tuple[str, ...], dict[str, str]]:
