@@ -60,6 +60,10 @@ def corpus(markers: dict[str, str], objects: tuple[str, ...], seed: int = 3) -> 
     commands += [f"Hey Stuart, go to the {rng.choice(places)} and {rng.choice(say)}" for _ in range(20)]
     commands += [f"Hey Stuart, go to the {rng.choice(places)} and pick up the {rng.choice(objects)}"
                  for _ in range(20)]
+    commands += [f"Hey Stuart, could you go to the {p} please" for p in places]
+    commands += [f"Hey Stuart, look for the {o} in the {rng.choice(places)}" for o in objects]
+    commands += [f"Hey Stuart, turn {d} {a} degrees" for d in ("left", "right") for a in (30, 60, 120)]
+    commands += [f"Hey Stuart, go to the {rng.choice(places)} and then turn around" for _ in range(10)]
     talk = ["what a lovely day it is", "I think the kitchen is closed today", "Hey Stuart, how are you",
             "Hey Stuart, what can you do", "did you see my keys anywhere", "the bathroom is down the hall",
             "Hey Stuart, thank you very much", "the meeting starts at three", "I left the cup on the table",
@@ -67,6 +71,12 @@ def corpus(markers: dict[str, str], objects: tuple[str, ...], seed: int = 3) -> 
             "Hey Stuart, where are you", "can someone open the window", "the drone cage is locked"]
     talk += [f"I put the {o} in the {rng.choice(places)}" for o in objects]
     talk += [f"is the {p} open today" for p in places[:8]]
+    talk += [f"the {p} looks much tidier than last week" for p in places]
+    talk += [f"Hey Stuart, do you like the {o}" for o in objects]
+    talk += ["I need to go home early today", "could you believe the weather this morning",
+             "Hey Stuart, good morning", "we should order more parts for the lab", "the robot looks happy",
+             "my phone is almost out of battery", "let's have lunch at noon", "Hey Stuart, you are doing great",
+             "the printer is making a strange noise", "has anyone seen the manual for the arm"]
     utterances = commands + talk
     rng.shuffle(utterances)
     return utterances
