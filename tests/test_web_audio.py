@@ -130,3 +130,10 @@ async def talk_text(url: str, text: str) -> dict[str, Any]:
     async with websockets.connect(url) as ws:
         await ws.send(text)
         return json.loads(await asyncio.wait_for(ws.recv(), 30))
+
+
+def test_a_tree_server_says_push_to_talk_needs_a_mission_server():
+    with Served("trees/greet.yaml", "--paused") as served:
+        answers = asyncio.run(talk(ws_url(served), [{"type": "start", "rate": 16000}, b"\x00\x00"], 2))
+    assert answers[0] == {"type": "error", "error": "push-to-talk needs a mission server: stuart-bt serve --mission"}
+    assert "without a start" in answers[1]["error"]
