@@ -101,13 +101,13 @@ def page(tmp_path: Path) -> Iterator[Any]:
     yield from chromium_page(browser_tests(), tmp_path)
 
 
-def chromium_page(playwright_mod: Any, tmp_path: Path) -> Iterator[Any]:
-    """A page in a fresh headless Chromium profile."""
+def chromium_page(playwright_mod: Any, tmp_path: Path, extra_args: tuple[str, ...] = ()) -> Iterator[Any]:
+    """A page in a fresh headless Chromium profile (``extra_args``: more Chromium flags)."""
     if not Path(CHROMIUM).exists():
         pytest.skip(f"{CHROMIUM} is not installed (scripts/system-deps.sh installs Debian chromium)")
     with playwright_mod.sync_playwright() as pw:
         context = pw.chromium.launch_persistent_context(
-            str(tmp_path / "profile"), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
+            str(tmp_path / "profile"), executable_path=CHROMIUM, headless=True, args=[*CHROMIUM_ARGS, *extra_args],
             viewport={"width": 1400, "height": 860})
         try:
             page = context.pages[0] if context.pages else context.new_page()

@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from ..hearing.recognisers import Recogniser
     from ..hearing.sources import Source
     from ..hearing.vocabulary import Vocabulary
+    from .commands import Command
     from .executor import MissionExecutor
 
 SPEECH_COMMANDS = ("say",)  # tts commands during which the robot's voice is in the room
@@ -106,12 +107,20 @@ class Listener:
 
     def take(self, heard: Heard) -> None:
         """Act on one utterance heard (also called directly by a source that hears on its own)."""
-        fields = hearing_fields(heard)
-        if heard.over_robot_speech and interpret(self.robot.parser, heard.text).kind != STOP:
-            self.robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
-            return
-        self.robot.events.publish("heard", acted=True, **fields)
-        self.robot.submit(heard.text, source=heard.source, heard={k: fields[k] for k in HEARD_IN_UTTERANCE})
+        take_heard(self.robot, heard)
+
+
+def take_heard(robot: MissionExecutor, heard: Heard) -> Command | None:
+    """Submit one utterance heard to ``robot`` like typed text, with a ``heard`` event; what was
+    heard over the robot's own voice is dropped unless it is a stop. Shared by the
+    :class:`Listener` and the web console's push-to-talk, so speech is judged the same way
+    whatever brought it; returns what it was understood as (None when dropped)."""
+    fields = hearing_fields(heard)
+    if heard.over_robot_speech and interpret(robot.parser, heard.text).kind != STOP:
+        robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
+        return None
+    robot.events.publish("heard", acted=True, **fields)
+    return robot.submit(heard.text, source=heard.source, heard={k: fields[k] for k in HEARD_IN_UTTERANCE})
 
 
 HEARD_IN_UTTERANCE = ("audio_s", "confidence", "no_speech", "latency_s", "engine")

@@ -10,6 +10,7 @@ Routes (every answer is JSON; a refused request gets ``{"error": "one sentence"}
 | ``GET /api/state`` | busy, running, can_continue |
 | ``POST /api/run``, ``/api/stop``, ``/api/continue`` | the served tree (or the mission's stop / continue) |
 | ``POST /api/say`` ``{text}`` | an utterance to the mission executor |
+| ``WS /ws/audio`` | push-to-talk: PCM frames of one press in, what was heard out (audio.py) |
 | ``POST /api/walk`` ``{x, y, yaw}``, ``/api/goto`` ``{marker}`` | walk to a map pose / a marker |
 | ``GET /api/map``, ``/api/map.png`` | map numbers and picture |
 | ``GET /api/markers``, ``POST /api/markers`` ``{op, name, ...}`` | the marker file (markers.py) |
@@ -39,6 +40,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from ..core.jsonfile import is_finite_number, nesting_depth
 from ..maps.markers import load_markers
+from .audio import audio_socket
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
 from .hub import EventHub
@@ -230,6 +232,10 @@ class WebApi:
             self.hub.disconnect(client)
 
 
+    async def audio(self, websocket: WebSocket) -> None:
+        await audio_socket(websocket, self.parts.guard, getattr(self.control, "hear", None))
+
+
 def create_app(parts: WebParts) -> Starlette:
     """The web view's ASGI app: the routes of :class:`WebApi`, the static page, and the guard
     (Host, Origin, token, body limits) in front of everything."""
@@ -255,6 +261,7 @@ def create_app(parts: WebParts) -> Starlette:
         Route("/api/gestures/{name}", api.gesture_save, methods=["POST"]),
         Route("/api/gestures/{name}/play", api.gesture_play, methods=["POST"]),
         WebSocketRoute("/ws", api.socket),
+        WebSocketRoute("/ws/audio", api.audio),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
 

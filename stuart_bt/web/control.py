@@ -218,9 +218,11 @@ class MissionControl:
 
     def __init__(self, options: Any) -> None:
         from ..mission.executor import MissionExecutor
+        from .ears import BrowserEars
 
         self.robot = MissionExecutor(options)
         self.markers_file = self.robot.markers_file
+        self.ears = BrowserEars(self.robot)
 
     @property
     def events(self) -> EventStream:
@@ -244,6 +246,10 @@ class MissionControl:
     def say(self, text: str) -> dict[str, Any]:
         command = self.robot.submit(text, source="web")
         return {"kind": command.kind, "intents": [i.to_dict() for i in command.intents]}
+
+    def hear(self, samples: Any, ended_at: float) -> dict[str, Any]:
+        """One utterance from the console's push-to-talk (16 kHz mono int16), heard and submitted."""
+        return self.ears.hear(samples, ended_at)
 
     def run(self) -> None:
         raise ControlError("a mission server runs what is said; type it in the console")

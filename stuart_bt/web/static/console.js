@@ -3,6 +3,7 @@
 // Everything shown comes from events (utterance, mission, tree, reply, command, leaf, warning).
 
 import { act, el, postJson, short } from "./api.js";
+import { PushToTalk } from "./talk.js";
 
 export class ConsoleView {
   constructor(store) {
@@ -19,6 +20,10 @@ export class ConsoleView {
       if (!text) return;
       const result = await act(postJson("/api/say", { text }));
       if (result) input.value = "";
+    });
+    this.talk = new PushToTalk(document.getElementById("talk-button"), (kind, text) => {
+      const last = this.store.events[this.store.events.length - 1];
+      this.append(last ? last.t : 0, kind, text);
     });
   }
 
