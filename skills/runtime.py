@@ -176,6 +176,8 @@ class Daemon:
         if not self._exiting:
             self._check_watchdog()
             self._poll_activities()
+            for level, message in self.backend.take_logs():
+                self._send(p.log(level, message))
         self._flush()
         if not self._exiting:
             self._heartbeat_if_due()  # after the flush, so a backlog means the reader is behind

@@ -191,21 +191,28 @@ def robot(robot_of_this_file, request):
     return robot_of_this_file
 
 
-@pytest.fixture
-def unitree_daemon(robot, tmp_path):
-    """``unitree_daemon(family, factor=1.0, **options)``: a started unitree daemon talking to
-    ``robot``; shut down after the test."""
+def supervisor(backend: str, family: str, options: dict[str, Any], run_dir: Path, factor: float = 1.0) -> Any:
+    """A supervisor of one ``family`` daemon with ``backend`` and ``options``, an event recorder on
+    its events, not started yet (the caller starts it and shuts it down)."""
     from stuart_bt.core.clock import ScaledClock
     from stuart_bt.core.events import EventRecorder, EventStream
     from stuart_bt.daemon.supervisor import Supervisor
 
-    made: list[Supervisor] = []
+    clock = ScaledClock(factor)
+    sup = Supervisor(backend, clock, EventStream(clock), families=(family,), options={family: options},
+                     run_dir=run_dir, handshake_timeout=30.0)
+    sup.recorder = EventRecorder(sup.events)
+    return sup
 
-    def start(family: str, factor: float = 1.0, **options: Any) -> Supervisor:
-        clock = ScaledClock(factor)
-        sup = Supervisor("unitree", clock, EventStream(clock), families=(family,),
-                         options={family: robot.options(**options)}, run_dir=tmp_path, handshake_timeout=30.0)
-        sup.recorder = EventRecorder(sup.events)
+
+@pytest.fixture
+def unitree_daemon(robot, tmp_path):
+    """``unitree_daemon(family, factor=1.0, **options)``: a started unitree daemon talking to
+    ``robot``; shut down after the test."""
+    made: list[Any] = []
+
+    def start(family: str, factor: float = 1.0, **options: Any) -> Any:
+        sup = supervisor("unitree", family, robot.options(**options), tmp_path, factor)
         made.append(sup)
         sup.start()
         return sup
@@ -215,15 +222,11 @@ def unitree_daemon(robot, tmp_path):
         sup.shutdown()
 
 
-def start_failure(family: str, options: dict[str, Any], run_dir: Path) -> str:
-    """The message of the DaemonStartError a unitree daemon with ``options`` gives."""
-    from stuart_bt.core.clock import ScaledClock
-    from stuart_bt.core.events import EventStream
-    from stuart_bt.daemon.supervisor import DaemonStartError, Supervisor
+def start_failure(family: str, options: dict[str, Any], run_dir: Path, backend: str = "unitree") -> str:
+    """The message of the DaemonStartError a ``backend`` daemon with ``options`` gives."""
+    from stuart_bt.daemon.supervisor import DaemonStartError
 
-    clock = ScaledClock(1.0)
-    sup = Supervisor("unitree", clock, EventStream(clock), families=(family,), options={family: options},
-                     run_dir=run_dir, handshake_timeout=30.0)
+    sup = supervisor(backend, family, options, run_dir)
     try:
         with pytest.raises(DaemonStartError) as err:
             sup.start()

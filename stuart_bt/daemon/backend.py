@@ -168,5 +168,10 @@ class Backend(ABC):
         """Halt the hardware now. Every activity was already cancelled; a vendor backend still
         sends its own stop in case something moves that no activity knew about."""
 
+    def take_logs(self) -> list[tuple[str, str]]:
+        """(level, message) pairs a backend's own threads want sent as ``log`` lines since the
+        last call (a malformed sample from the robot is worth a warning, not a failed command)."""
+        return []
+
     def close(self) -> None:  # noqa: B027 - a hook: backends with connections override it
         """Release connections before the process exits."""

@@ -10,7 +10,11 @@ read (a file), which decides whether waiting for more makes sense.
 from __future__ import annotations
 
 import contextlib
+import fcntl
+import ipaddress
 import queue
+import socket
+import struct
 import sys
 import time
 from collections.abc import Callable, Iterator
@@ -137,6 +141,79 @@ class MicSource:
         self._queue.put(None)
 
 
+ROBOT_MIC_GROUP = "239.168.123.161"  # where the G1 sends its microphone array's audio (UDP multicast)
+ROBOT_MIC_PORT = 5555
+RECEIVE_WAIT_S = 0.2  # how long one read waits before looking whether the source was closed
+SIOCGIFADDR = 0x8915  # Linux ioctl: an interface's IPv4 address
+
+
+class MulticastSource:
+    """The G1's microphone array: 16 kHz mono int16 datagrams sent to a UDP multicast group.
+
+    Plain sockets, no vendor SDK. ``interface`` (an IPv4 address or a network interface name:
+    the port on the robot's network) says where to join the group; a unicast ``group`` (a
+    loopback address in a test) is simply bound and read. Datagrams are joined and cut into the
+    30 ms blocks the voice detector wants, whatever size the robot sends."""
+
+    live = True
+
+    def __init__(self, group: str = ROBOT_MIC_GROUP, port: int = ROBOT_MIC_PORT, interface: str = "lo") -> None:
+        self.group, self.port = group, port
+        self.address = interface_address(interface)
+        self.name = f"udp:{group}:{port}"
+        self._closed = False
+        self.sock = self._open()
+
+    def _open(self) -> socket.socket:
+        sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        try:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            sock.bind((self.group, self.port))
+            if ipaddress.ip_address(self.group).is_multicast:
+                membership = socket.inet_aton(self.group) + socket.inet_aton(self.address)
+                sock.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, membership)
+            sock.settimeout(RECEIVE_WAIT_S)
+        except (OSError, ValueError) as e:
+            sock.close()
+            raise AudioError(f"{self.name}: cannot listen on interface {self.address} ({e})") from None
+        return sock
+
+    def blocks(self) -> Iterator[np.ndarray]:
+        import numpy as np
+
+        size = int(RATE * BLOCK_S) * SAMPLE_BYTES
+        pending = b""
+        while not self._closed:
+            try:
+                pending += self.sock.recv(65536)
+            except TimeoutError:
+                continue
+            except OSError:  # closed under the reader
+                return
+            whole = len(pending) - len(pending) % size
+            for start in range(0, whole, size):
+                yield np.frombuffer(pending[start:start + size], "<i2").astype(np.int16)
+            pending = pending[whole:]
+
+    def close(self) -> None:
+        self._closed = True
+        self.sock.close()
+
+
+def interface_address(interface: str) -> str:
+    """An IPv4 address as given, or the address of the network interface named ``interface``."""
+    with contextlib.suppress(ValueError):
+        return str(ipaddress.IPv4Address(interface))
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        try:
+            packed = fcntl.ioctl(s.fileno(), SIOCGIFADDR, struct.pack("256s", interface.encode()[:15]))
+        except OSError:
+            names = [name for _, name in socket.if_nameindex()]
+            raise AudioError(f"no IPv4 network interface {interface!r}{did_you_mean(interface, names)}; "
+                             f"have: {', '.join(names)}") from None
+    return socket.inet_ntoa(packed[20:24])
+
+
 SOURCES: dict[str, Callable[[str, bool], Source]] = {
     "file": lambda arg, live: FileSource([arg], live),
     "mic": lambda arg, live: MicSource(arg or None),
@@ -216,5 +293,5 @@ def _split(samples: np.ndarray, step: int) -> Iterator[np.ndarray]:
         yield samples[start:start + step]
 
 
-__all__ = ["SOURCES", "FileSource", "InputDevice", "MicSource", "PcmSource", "Source", "list_input_devices",
-           "open_source"]
+__all__ = ["SOURCES", "FileSource", "InputDevice", "MicSource", "MulticastSource", "PcmSource", "Source",
+           "interface_address", "list_input_devices", "open_source"]
