@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import socket
 import time
 from collections.abc import Callable
@@ -120,6 +121,18 @@ def startup_option(parse: Callable[[], Any]) -> Any:
         raise StartupError(e.reason) from None
 
 
+def join_dds(domain: int, interface: str) -> None:
+    """``ChannelFactoryInitialize(domain, interface)`` without the trace file: the SDK's config for
+    a named interface has CycloneDDS write a trace to ``/tmp/cdds.LOG`` in every process that
+    joins, a file nobody reads that would outlive every run and every test. The config is the
+    SDK's own, with its ``<Tracing>`` element left out. Used by the daemons and the fakes alike."""
+    from unitree_sdk2py.core import channel
+
+    channel.ChannelConfigHasInterface = re.sub(r"\s*<Tracing>.*?</Tracing>", "", channel.ChannelConfigHasInterface,
+                                               flags=re.DOTALL)
+    ChannelFactoryInitialize(domain, interface)
+
+
 def connect(link: Link) -> None:
     """Join the DDS domain on the chosen interface (once per process; the SDK ignores repeats)."""
     if link.interface not in _interfaces():
@@ -127,7 +140,7 @@ def connect(link: Link) -> None:
         raise StartupError(f"no network interface {link.interface!r} on this machine (have: {known}); "
                            "set the 'interface' option or STUART_UNITREE_INTERFACE")
     try:
-        ChannelFactoryInitialize(link.domain, link.interface)
+        join_dds(link.domain, link.interface)
     except Exception as e:  # noqa: BLE001 - the SDK raises a bare Exception
         raise StartupError(f"cannot start DDS on {link.where()}: {e}") from None
 

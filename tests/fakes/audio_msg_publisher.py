@@ -9,15 +9,17 @@ from __future__ import annotations
 import argparse
 import sys
 
-from unitree_sdk2py.core.channel import ChannelFactoryInitialize, ChannelPublisher
+from unitree_sdk2py.core.channel import ChannelPublisher
 from unitree_sdk2py.idl.std_msgs.msg.dds_ import String_
+
+from stuart_bt.skills.vendor import join_dds
 
 
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--domain", type=int, required=True)
     domain = parser.parse_args().domain
-    ChannelFactoryInitialize(domain, "lo")
+    join_dds(domain, "lo")
     publisher = ChannelPublisher("rt/audio_msg", String_)
     publisher.Init()
     print("ready", flush=True)

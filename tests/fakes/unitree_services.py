@@ -31,7 +31,7 @@ import threading
 import time
 from typing import Any
 
-from unitree_sdk2py.core.channel import ChannelFactory, ChannelFactoryInitialize, ChannelPublisher, ChannelSubscriber
+from unitree_sdk2py.core.channel import ChannelFactory, ChannelPublisher, ChannelSubscriber
 from unitree_sdk2py.idl.default import (
     nav_msgs_msg_dds__Odometry_,
     std_msgs_msg_dds__String_,
@@ -43,6 +43,8 @@ from unitree_sdk2py.idl.unitree_hg.msg.dds_ import HandCmd_, LowCmd_
 from unitree_sdk2py.rpc.client import Client
 from unitree_sdk2py.rpc.server_base import ServerBase
 from unitree_sdk2py.utils.crc import CRC
+
+from stuart_bt.skills.vendor import join_dds
 
 VERSIONS = {"sport": "1.0.0.0", "loco": "1.0.0.0", "voice": "1.0.0.0", "arm": "1.0.0.14", "slam_operate": "1.0.0.1"}
 HOLDING_ACTIONS = {15, 18, 19, 20, 21, 23, 27}
@@ -247,7 +249,7 @@ def main(argv: list[str] | None = None) -> int:
         robot.faults.append({"service": service, "silent": True, "times": 10**9})
     # first, before anything can hang: the end of the test's input ends the fake, whatever it is doing
     threading.Thread(target=_control, args=(sys.stdin, robot), daemon=True).start()
-    ChannelFactoryInitialize(args.domain, args.interface)
+    join_dds(args.domain, args.interface)
     _start_services(robot)
     odom, key_info = _start_topics(robot)
     unanswered = _probe(sorted(set(VERSIONS) - silent))
