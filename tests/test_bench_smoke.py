@@ -79,7 +79,8 @@ def test_quick_run_writes_every_figure(tmp_path: Path) -> None:
             assert r["ratio"] is None and r["note"], f"{name}: a missing anchor needs a note saying why"
         else:
             assert r["anchor"]["name"] and _number(r["anchor"]["value"]), name
-            assert _number(r["ratio"]), name
+            # a ratio to an anchor of 0 (an accuracy of 0 % on the few utterances of a quick run) is undefined
+            assert _number(r["ratio"]) if r["anchor"]["value"] != 0 else r["ratio"] is None, name
         if r["goal"] is None:
             assert r["met"] is None, f"{name}: no goal, so nothing can be met"
     assert all(name.split(".", 1)[1] in done.stdout for name in EXPECTED)  # the printed table lists them all
