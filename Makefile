@@ -3,6 +3,10 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install -q --disable-pip-version-check
+# llama.cpp compiles for x86-64 with AVX2/FMA/F16C, not for this machine's own CPU (-march=native):
+# a virtual CPU may announce AMX tiles that its host does not let a program use (tileloadd ->
+# SIGILL, seen here), and a wheel pip cached on one machine is reused on the next.
+export CMAKE_ARGS ?= -DGGML_NATIVE=OFF
 
 .PHONY: demo test lint bench system-deps schema docs screenshots clean
 
