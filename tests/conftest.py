@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-# the last three: shared fixtures
-pytest_plugins = ["pytester", "session_guard", "web_support", "unitree_fake", "speech_support"]
+# the last four: shared fixtures
+pytest_plugins = ["pytester", "session_guard", "web_support", "unitree_fake", "speech_support", "ears_fakes"]
 
 
 def pytest_configure(config: pytest.Config) -> None:

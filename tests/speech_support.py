@@ -6,6 +6,7 @@ silence. Registered as a pytest plugin for the session-wide recogniser."""
 from __future__ import annotations
 
 import shutil
+import time
 
 import pytest
 
@@ -42,3 +43,16 @@ def lab_vocabulary():
     from stuart_bt.testing import lab_markers
 
     return Resolver.from_files(lab_markers()).vocabulary()
+
+
+def wait_event(events, match, timeout: float = 60.0):
+    """The last event ``events`` (an EventRecorder) holds that ``match``es, waiting up to
+    ``timeout`` s; on a timeout the assertion shows the last events."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        found = [e for e in list(events.events) if match(e)]
+        if found:
+            return found[-1]
+        time.sleep(0.05)
+    raise AssertionError("timed out waiting for an event; last events: " +
+                         "; ".join(f"{e.kind} {e.data}" for e in list(events.events)[-8:]))

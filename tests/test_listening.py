@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from speech_support import NEEDS_ESPEAK
-from stuart_bt.core.events import Event, EventRecorder
+from speech_support import wait_event as _wait
+from stuart_bt.core.events import EventRecorder
 from stuart_bt.hearing.audio import RATE, read_audio
 from stuart_bt.hearing.sources import PcmSource
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
@@ -43,17 +44,6 @@ class Microphone:
 
     def close(self) -> None:
         os.close(self._write)
-
-
-def _wait(events: EventRecorder, match, timeout: float = 30.0) -> Event:
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        found = [e for e in list(events.events) if match(e)]
-        if found:
-            return found[-1]
-        time.sleep(0.05)
-    raise AssertionError("timed out waiting for an event; last events: " +
-                         "; ".join(f"{e.kind} {e.data}" for e in list(events.events)[-8:]))
 
 
 @pytest.fixture

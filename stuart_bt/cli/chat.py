@@ -37,6 +37,7 @@ from ..run.executor import RunOutcome
 from ..tree.render import render
 from ..tree.spec import NodeSpec, TreeSpec
 from .hear import add_hearing_arguments
+from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
 
 EXIT_OK, EXIT_FAILED, EXIT_INTERRUPTED = 0, 1, 130
@@ -129,7 +130,7 @@ def describe(event: Event) -> str | None:
         extra = " instead" if d.get("replace") and d.get("kind") == "tasks" else ""
         return f"heard     {d.get('text')!r} -> {d.get('kind')}{extra}" + (f": {intents}" if intents else "")
     if event.kind == "heard":
-        how = f"confidence {d.get('confidence', 0):.2f}, {d.get('latency_s', 0):.1f} s after the speech ended"
+        how = _how_heard(d)
         ignored = "" if d.get("acted") else "; ignored: the robot was speaking and it was no stop"
         return f"hearing   {d.get('text')!r} ({how}){ignored}"
     if event.kind == "mission":
@@ -271,6 +272,15 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     return p
 
 
+def _how_heard(d: dict[str, Any]) -> str:
+    """Confidence and latency of an utterance heard, where its recogniser gave them (the robot's
+    own recogniser gives only text)."""
+    confidence, latency = d.get("confidence"), d.get("latency_s")
+    how = [f"confidence {confidence:.2f}" if isinstance(confidence, (int, float)) else f"{d.get('engine')} recogniser",
+           f"{latency:.1f} s after the speech ended" if isinstance(latency, (int, float)) and latency else ""]
+    return ", ".join(h for h in how if h)
+
+
 def _arguments(p: argparse.ArgumentParser, listening: bool = False) -> None:
     """The chat's options; ``listening`` (``stuart-bt listen``): the sound source is required."""
     p.add_argument("--backend", choices=("dry", "sim"), default="dry", help="skill backend (default dry)")
@@ -278,12 +288,15 @@ def _arguments(p: argparse.ArgumentParser, listening: bool = False) -> None:
     p.add_argument("--no-wake", action="store_true", help="no 'Hey Stuart' needed (a typed console)")
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
     p.add_argument("--max-repairs", type=int, default=2, metavar="N", help="repairs per mission (default 2)")
-    sources = "mic, mic:DEVICE, file:PATH, - for raw 16 kHz PCM on stdin"
+    sources = ("mic, mic:DEVICE, file:PATH, - for raw 16 kHz PCM on stdin, robot (the G1's microphones) or "
+               "robot:asr (the G1's own recogniser)")
     if listening:
         p.add_argument("--source", dest="hear", required=True, metavar="SOURCE", help=f"what to hear: {sources}")
     else:
         p.add_argument("--hear", metavar="SOURCE", help=f"also hear SOURCE ({sources}): what is heard is said "
                                                          "like a typed line")
+    p.add_argument("--daemon-options", metavar="FILE",
+                   help="YAML/JSON {family: {option: value}}; 'ears' configures --source robot (docs/hearing.md)")
     add_hearing_arguments(p)
     add_llm_arguments(p)
 
@@ -293,13 +306,15 @@ def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO 
     ``--hear``, what is heard is said too; when the sound comes on stdin (``-``), or for
     ``stuart-bt listen``, the chat ends when the sound does."""
     stdin, out = stdin or sys.stdin, out or sys.stdout
-    options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start,
-                             require_wake=not args.no_wake, max_repairs=args.max_repairs,
-                             conversation=args.llm, conversation_options=llm_options(args),
-                             propose_tasks=args.propose)
     try:
+        daemon_options = _daemon_options(getattr(args, "daemon_options", None), also=("ears",))
+        options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start,
+                                 require_wake=not args.no_wake, max_repairs=args.max_repairs,
+                                 conversation=args.llm, conversation_options=llm_options(args),
+                                 propose_tasks=args.propose,
+                                 daemon_options={k: v for k, v in daemon_options.items() if k != "ears"})
         chat = Chat(options, out)
-        listener = _listener(args, chat)
+        listener = _listener(args, chat, daemon_options.get("ears", {}))
     except (StuartError, ValueError, RuntimeError) as e:  # bad options, a missing model file, no microphone
         print(f"stuart-bt: {e}", file=sys.stderr)
         return EXIT_FAILED
@@ -351,10 +366,15 @@ def _until_heard(chat: Chat, listener: Any) -> None:
     chat.wait_idle(EOF_WAIT)
 
 
-def _listener(args: argparse.Namespace, chat: Chat) -> Any:
-    """The hearing pipeline in front of the chat's robot, if ``--hear`` asked for one."""
+def _listener(args: argparse.Namespace, chat: Chat, ears_options: dict[str, Any]) -> Any:
+    """The hearing pipeline in front of the chat's robot, if ``--hear`` asked for one: the
+    robot's own ears (a daemon, started here) or a source heard in this process."""
     if not args.hear:
         return None
+    from ..mission.robot_ears import RobotEars, is_robot_source
+
+    if is_robot_source(args.hear):
+        return RobotEars(chat.robot, args.hear, ears_options)
     from ..hearing.sources import open_source
     from ..mission.listening import Listener
     from .hear import make_recogniser

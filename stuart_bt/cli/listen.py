@@ -4,7 +4,8 @@ until the sound ends or Ctrl-C (which stops every daemon, as everywhere).
 It is ``stuart-bt chat --hear SOURCE`` without typed lines: the same executor, the same printed
 events (``hearing`` lines show each utterance heard, its confidence and latency). Sources:
 ``mic`` / ``mic:DEVICE`` (a local microphone), ``file:PATH`` (a recording, or a folder of them),
-``-`` (raw 16 kHz mono int16 PCM on stdin). docs/hearing.md.
+``-`` (raw 16 kHz mono int16 PCM on stdin), ``robot`` / ``robot:asr`` (the G1's microphone
+array or its own recogniser, heard in the ``ears`` daemon). docs/hearing.md.
 """
 
 from __future__ import annotations

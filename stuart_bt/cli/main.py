@@ -145,8 +145,9 @@ def cmd_schema(args: argparse.Namespace) -> int:
 
 
 # -- plumbing ----------------------------------------------------------------------------------------
-def _daemon_options(file: str | None) -> dict[str, dict[str, Any]]:
-    """``--daemon-options FILE``: per-family daemon options (YAML is a superset of JSON)."""
+def _daemon_options(file: str | None, also: tuple[str, ...] = ()) -> dict[str, dict[str, Any]]:
+    """``--daemon-options FILE``: per-family daemon options (YAML is a superset of JSON);
+    ``also``: families beyond the skill families that the command starts (``ears``)."""
     if not file:
         return {}
     import yaml
@@ -160,10 +161,11 @@ def _daemon_options(file: str | None) -> dict[str, dict[str, Any]]:
         raise UserError(f"--daemon-options {file}: {e}") from None
     if not isinstance(data, dict) or not all(isinstance(v, dict) for v in data.values()):
         raise UserError(f"--daemon-options {file}: expected {{family: {{option: value}}}}, got {data!r}")
+    known = (*FAMILIES, *also)
     for family in data:
-        if family not in FAMILIES:
-            raise UserError(f"--daemon-options {file}: unknown family {family!r}{did_you_mean(str(family), FAMILIES)}; "
-                            f"families: {', '.join(FAMILIES)}")
+        if family not in known:
+            raise UserError(f"--daemon-options {file}: unknown family {family!r}{did_you_mean(str(family), known)}; "
+                            f"families: {', '.join(known)}")
     return data
 
 

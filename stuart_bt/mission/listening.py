@@ -14,7 +14,10 @@ barge-in). Anything else heard then is dropped as ``over_robot_speech``.
 
 from __future__ import annotations
 
+import math
 import threading
+import time
+from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -39,11 +42,22 @@ class RobotVoice:
     a tts ``say`` command starts it, that request's ``done`` or ``error`` (or a tts ``stop``)
     ends it. ``on_change(speaking)`` is called on every change."""
 
-    def __init__(self, events: EventStream, on_change: Callable[[bool], None]) -> None:
+    def __init__(self, events: EventStream, on_change: Callable[[bool], None] | None = None) -> None:
         self._playing: set[str] = set()
         self._lock = threading.Lock()
-        self._on_change = on_change
+        self._on_change = on_change or (lambda speaking: None)
+        self._spans: deque[list[float]] = deque(maxlen=64)  # [start, end] perf_counter s (end inf: still talking)
         events.subscribe(self.on_event)
+
+    def spoke_over(self, start: float, end: float) -> bool:
+        """Was the robot talking over most of [start, end] (``perf_counter`` seconds), or when it
+        began? The judgement the segmenter makes frame by frame, for an utterance that was cut
+        elsewhere (the robot's own ears cut in their daemon and say only when it ended)."""
+        with self._lock:
+            spans = [(a, b) for a, b in self._spans if b > start and a < end]
+        began_over = any(a <= start < b for a, b in spans)
+        overlap = sum(min(b, end) - max(a, start) for a, b in spans)
+        return began_over or 2 * overlap > end - start
 
     @property
     def speaking(self) -> bool:
@@ -63,8 +77,16 @@ class RobotVoice:
             elif event.kind == "daemon" and d.get("type") in ("done", "error"):
                 self._playing.discard(str(d.get("id")))
             now = bool(self._playing)
+            if now != before:
+                self._mark(now)
         if now != before:
             self._on_change(now)
+
+    def _mark(self, speaking: bool) -> None:
+        if speaking:
+            self._spans.append([time.perf_counter(), math.inf])
+        elif self._spans:
+            self._spans[-1][1] = time.perf_counter()
 
 
 class Listener:
@@ -115,12 +137,18 @@ def take_heard(robot: MissionExecutor, heard: Heard) -> Command | None:
     heard over the robot's own voice is dropped unless it is a stop. Shared by the
     :class:`Listener` and the web console's push-to-talk, so speech is judged the same way
     whatever brought it; returns what it was understood as (None when dropped)."""
-    fields = hearing_fields(heard)
-    if heard.over_robot_speech and interpret(robot.parser, heard.text).kind != STOP:
+    return act_on_heard(robot, hearing_fields(heard))
+
+
+def act_on_heard(robot: MissionExecutor, fields: dict[str, Any]) -> Command | None:
+    """:func:`take_heard` for an utterance described by its :func:`hearing_fields` (the robot's
+    own ears describe what they heard in a daemon's progress line, not as a :class:`Heard`)."""
+    if fields["over_robot_speech"] and interpret(robot.parser, fields["text"]).kind != STOP:
         robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
         return None
     robot.events.publish("heard", acted=True, **fields)
-    return robot.submit(heard.text, source=heard.source, heard={k: fields[k] for k in HEARD_IN_UTTERANCE})
+    return robot.submit(fields["text"], source=fields["source"],
+                        heard={k: fields.get(k) for k in HEARD_IN_UTTERANCE})
 
 
 HEARD_IN_UTTERANCE = ("audio_s", "confidence", "no_speech", "latency_s", "engine")
