@@ -80,3 +80,28 @@ def _feed(segmenter: Segmenter, samples: np.ndarray) -> list:
     for start in range(0, len(samples), 480):
         out += segmenter.feed(samples[start:start + 480])
     return out
+
+
+@NEEDS_ESPEAK
+def test_while_the_robot_speaks_a_shorter_silence_ends_an_utterance(commands):
+    """Barge-in: "Hey Stuart, stop" said over the robot is cut sooner after it ends; a pause
+    shorter than the usual end of speech but longer than the barge-in one splits two phrases."""
+    options = SegmenterOptions()
+    gap = (options.barge_in_silence_s + options.end_silence_s) / 2
+    first, second = (_trimmed(c) for c in commands[1:3])
+    two_phrases = np.concatenate([np.zeros(RATE, np.int16), first, np.zeros(int(RATE * gap), np.int16), second,
+                                  np.zeros(RATE, np.int16)])
+    ends = {}
+    for speaking in (False, True):
+        segmenter = Segmenter(options)
+        segmenter.speaking = speaking
+        segments = _cut(two_phrases, segmenter)
+        ends[speaking] = segments[0].end_s
+        assert len(segments) == (2 if speaking else 1), (speaking, [(s.start_s, s.end_s) for s in segments])
+    assert ends[True] < ends[False]
+
+
+def _trimmed(clip: np.ndarray) -> np.ndarray:
+    """The clip without the silence espeak-ng puts around it (so a gap is the gap made here)."""
+    loud = np.flatnonzero(np.abs(clip.astype(np.int32)) > 300)
+    return clip[loud[0]:loud[-1] + 1]

@@ -117,3 +117,18 @@ def test_listening_to_a_microphone_that_is_not_there_is_one_clear_line(tmp_path)
                           capture_output=True, text=True, timeout=60)
     assert proc.returncode == 1 and "Traceback" not in proc.stderr
     assert proc.stderr.strip().startswith("stuart-bt: no ") and len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_hey_stuart_then_a_pause_then_stop_over_the_robot_s_voice_still_stops_it(ears, tmp_path):
+    """The shorter end of speech while the robot talks cuts "Hey Stuart ... stop" in two at a
+    long pause; the bare wake phrase holds the robot's attention for the stop."""
+    robot, mic, events, listener = ears
+    robot.submit("Hey Stuart, what can you do?")
+    _wait(events, lambda e: e.kind == "command" and e.data.get("family") == "tts" and e.data.get("cmd") == "say")
+    mic.say(read_audio(speak("Hey Stuart.", tmp_path / "wake.wav", "en-gb+m3")), then_quiet_s=0.6)
+    mic.say(read_audio(speak("stop", tmp_path / "stop.wav", "en-us")))
+    stop = _wait(events, lambda e: e.kind == "utterance" and e.data.get("kind") == "stop")
+    assert stop.data["wake_held"] is True
+    heard = [e.data for e in events.events if e.kind == "heard"]
+    assert len(heard) >= 2 and heard[0]["acted"] is False, "the wake phrase came as an utterance of its own"
+    _wait(events, lambda e: e.kind == "command" and e.data.get("family") == "tts" and e.data.get("cmd") == "stop")

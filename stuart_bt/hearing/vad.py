@@ -47,11 +47,15 @@ class Segment:
 @dataclass
 class SegmenterOptions:
     """How speech is told from silence. Why these: 0.7 s of silence ends a command (people pause
-    for 0.2-0.5 s between words of a command, and longer when done); 15 s is longer than any
-    spoken command; a start needs 5 voiced frames of the last 8 (~0.15 s of voice)."""
+    for 0.2-0.5 s between words of a command, and longer when done); while the robot talks,
+    0.35 s does, so that "Hey Stuart, stop" stops it sooner (a longer pause after the wake phrase
+    cuts it in two, and a bare wake phrase holds the robot's attention for the stop that
+    follows: :mod:`stuart_bt.mission.attention`); 15 s is longer than any spoken command; a
+    start needs 5 voiced frames of the last 8 (~0.15 s of voice)."""
 
     aggressiveness: int = 2  # 0 (lenient) .. 3 (strict): how readily WebRTC calls a frame voiced
     end_silence_s: float = 0.7
+    barge_in_silence_s: float = 0.35  # while the robot talks: only a stop is acted on then, and it is short
     max_s: float = 15.0
     pre_roll_s: float = 0.3
     start_window: int = 8
@@ -116,7 +120,8 @@ class Segmenter:
         else:
             self._trailing += 1
         o = self.options
-        if self._trailing * 0.03 >= o.end_silence_s or (len(self._frames) + 1) * 0.03 > o.max_s:
+        end_silence = o.barge_in_silence_s if self.speaking or self._started_over_speech else o.end_silence_s
+        if self._trailing * 0.03 >= end_silence or (len(self._frames) + 1) * 0.03 > o.max_s:
             return self._cut()
         return None
 

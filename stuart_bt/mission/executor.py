@@ -49,6 +49,7 @@ from ..run.executor import RunOutcome
 from ..run.session import RunOptions, Session
 from ..tasks import project_domain
 from ..tree.spec import TreeSpec
+from .attention import Attention
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
 from .proposals import Offers
 from .queue import Job, JobQueue, Look, Mission, Say
@@ -106,6 +107,7 @@ class MissionExecutor:
         self.replies = Replies(self.jobs, self.session, conversation, self.offers.offer, self._run_tree)
         self.runner = TreeRunner(self.session, self.jobs, aside=self.replies.say_aside)
         self.replanner = Replanner(self.domain, self.session.blackboard, markers)
+        self.attention = Attention()  # "Hey Stuart." ... "go to the kitchen"
 
     # -- life cycle ---------------------------------------------------------------------------------
     def start(self) -> Self:
@@ -180,10 +182,13 @@ class MissionExecutor:
         ``mic:...``); ``heard``, for speech, what hearing adds (``audio_s``, ``confidence``, ...).
         The ``utterance`` event's ``parsed`` holds every intent the grammar found (the
         ``stuart-bt parse`` intents, a leading ``stop`` included); ``intents`` the ones to plan."""
-        command = interpret(self.parser, utterance, woken)
+        held = self.attention.take() and not woken
+        command = interpret(self.parser, utterance, woken or held)
+        self.attention.after(command)
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
                             intents=[i.to_dict() for i in command.intents],
-                            parsed=[i.to_dict() for i in command.parse.intents], source=source, **(heard or {}))
+                            parsed=[i.to_dict() for i in command.parse.intents], source=source,
+                            **({"wake_held": True} if held else {}), **(heard or {}))
         if self.offers.answer(command):
             return command
         if command.kind == IGNORE:

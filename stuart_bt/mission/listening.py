@@ -143,9 +143,12 @@ def take_heard(robot: MissionExecutor, heard: Heard) -> Command | None:
 def act_on_heard(robot: MissionExecutor, fields: dict[str, Any]) -> Command | None:
     """:func:`take_heard` for an utterance described by its :func:`hearing_fields` (the robot's
     own ears describe what they heard in a daemon's progress line, not as a :class:`Heard`)."""
-    if fields["over_robot_speech"] and interpret(robot.parser, fields["text"]).kind != STOP:
-        robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
-        return None
+    if fields["over_robot_speech"]:
+        command = interpret(robot.parser, fields["text"], robot.attention.held())
+        if command.kind != STOP:
+            robot.attention.after(command)  # "Hey Stuart" ... "stop", cut in two over the robot's voice
+            robot.events.publish("heard", acted=False, reason="over_robot_speech", **fields)
+            return None
     robot.events.publish("heard", acted=True, **fields)
     return robot.submit(fields["text"], source=fields["source"],
                         heard={k: fields.get(k) for k in HEARD_IN_UTTERANCE})
