@@ -208,8 +208,14 @@ def barge_in(recogniser: Any, vocabulary: Any, trials: int) -> list[float]:
     read, write = os.pipe()
     listener = Listener(robot, PcmSource(os.fdopen(read, "rb")), recogniser, vocabulary)
     stopped = threading.Event()
-    robot.events.subscribe(lambda e: stopped.set() if e.kind == "command" and e.data.get("family") == "tts"
-                           and e.data.get("cmd") == "stop" else None)
+    stopped_at: list[float] = []
+
+    def on_event(e: Any) -> None:
+        if e.kind == "command" and e.data.get("family") == "tts" and e.data.get("cmd") == "stop":
+            stopped_at.append(time.perf_counter())
+            stopped.set()
+
+    robot.events.subscribe(on_event)
     robot.start()
     listener.start()
     try:
@@ -219,8 +225,9 @@ def barge_in(recogniser: Any, vocabulary: Any, trials: int) -> list[float]:
             while not listener.voice.speaking:
                 time.sleep(0.01)
             ended = _play(write, np.concatenate([clip, np.zeros(int(RATE * 1.5), np.int16)]), len(clip))
-            if stopped.wait(10.0):
-                out.append(time.perf_counter() - ended)
+            # the time of the stop command itself (it usually came while the silence after it played);
+            # a stop that never came counts as infinitely late
+            out.append(stopped_at[-1] - ended if stopped.wait(10.0) else float("inf"))
             robot.wait_idle(30.0)
     finally:
         os.close(write)

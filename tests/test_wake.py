@@ -65,6 +65,20 @@ def test_a_bare_name_wakes_only_with_a_pause_after_it(wake: WakeFilter) -> None:
     assert not WakeFilter(bare_name=False).match("Stuart, stop!").woke
 
 
+@pytest.mark.parametrize("utterance", ["case Stuart, stop", "hate Stewart, go to the kitchen", "pay Stuart: wave",
+                                       "um, K Stuart, turn left"])
+def test_a_misheard_greeting_wakes_like_a_bare_name_with_a_pause_after_it(wake: WakeFilter, utterance: str) -> None:
+    m = wake.match(utterance)
+    assert m.woke and m.command and not m.command.startswith((",", ":")), m
+    assert m.distance > 0, "a guessed greeting is a less sure match than a heard one"
+
+
+@pytest.mark.parametrize("utterance", ["case Stuart go to the kitchen", "thanks Stuart, that was great",
+                                       "I think Stuart, is tired", "the tall Stuart, went home"])
+def test_a_word_before_the_name_without_a_pause_or_a_long_one_does_not_wake(wake: WakeFilter, utterance: str) -> None:
+    assert not wake.match(utterance).woke
+
+
 def test_command_keeps_its_spelling_and_a_final_question_mark(wake: WakeFilter) -> None:
     m = wake.match("Hey Stuart... What can you pick up?")
     assert m.command == "What can you pick up?"

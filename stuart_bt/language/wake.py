@@ -12,7 +12,9 @@ Where the name may stand: at the start of the utterance, after optional filler (
 "so") and a greeting ("hey", "hi", "hello", "ok", "okay", ... and what recognisers make of them:
 "hay", "a", "o k"). A name with no greeting wakes only when a pause follows it (a comma or other
 punctuation, or nothing at all: "Stuart, stop!"), so "Stuart Little is a film" does not wake,
-and neither does a name in the middle of a sentence ("I told Stuart to go").
+and neither does a name in the middle of a sentence ("I told Stuart to go"). The same holds for
+a name after one short word that is no known greeting: a greeting the recogniser misheard
+("case Stuart, stop").
 """
 
 from __future__ import annotations
@@ -66,6 +68,11 @@ VOWELS = frozenset("AU")
 VOWEL_INDEL, CONSONANT_INDEL, SUBSTITUTION = 1.0, 0.75, 1.0
 DEFAULT_TOLERANCE = 0.8  # one consonant sound lost or added; tuned on wake.jsonl
 SHORT_NAME_SPELLING = 0.7  # difflib ratio a heard word needs to a short name's spelling
+# A short word no greeting list holds may stand for one before the name ("case Stuart, stop",
+# "hate Stuart, wave": what a recogniser made of "hey" under noise or over the robot's voice),
+# when a pause follows the name, as it must after a bare name.
+MISHEARD_GREETING_CHARS = 5
+MISHEARD_GREETING_COST = 0.5
 
 
 def phonetic_key(word: str) -> str:
@@ -196,6 +203,10 @@ class WakeFilter:
         if span is None and not greeted:
             span = self._fused(toks[i])  # "heystuart": greeting and name run together
             greeted = span is not None
+        if span is None and not greeted and len(toks[i]) <= MISHEARD_GREETING_CHARS:
+            span = self._name_at(toks, i + 1)  # "case Stuart, stop": a greeting misheard; a pause must follow
+            if span is not None:
+                span = (span[0] + 1, span[1] + MISHEARD_GREETING_COST)
         if span is None:
             return WakeMatch(False)
         k, dist = span
