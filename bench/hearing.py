@@ -103,11 +103,14 @@ def _hear_all(recogniser: Any, clips: list[Any], vocabulary: Any, parser: Any,
               resolver: Any) -> tuple[list[list], list[float], list[float]]:
     """(intents per clip, latency s per clip, real-time factor per clip)."""
     from stuart_bt.hearing.pipeline import is_speech, transcribe
+    from stuart_bt.language.readings import choose_reading
 
     meant, latency, rtf = [], [], []
     for clip in clips:
         heard = transcribe(recogniser, clip, vocabulary)
-        text = heard.text if is_speech(heard.transcript) else ""
+        t = heard.transcript
+        readings = [(t.text, t.avg_logprob), *t.alternatives] if is_speech(t) else [("", 0.0)]
+        text = readings[choose_reading(readings, parser, resolver)][0]
         meant.append(_meaning(parser, text, resolver))
         latency.append(heard.latency_s)
         rtf.append(heard.transcript.seconds / max(heard.transcript.audio_s, 1e-6))

@@ -17,7 +17,7 @@ from stuart_bt.testing import speak
 
 pytest.importorskip("faster_whisper", reason="the 'hearing' extra is not installed (make test installs it)")
 PARSE_FIELDS = {"utterance", "wake", "command", "intents", "conversational"}
-HEARING_FIELDS = {"file", "transcript", "audio_s", "confidence", "no_speech", "latency_s", "engine"}
+HEARING_FIELDS = {"file", "transcript", "audio_s", "confidence", "no_speech", "latency_s", "engine", "readings"}
 
 
 def _hear(*args: str, stdin: bytes | None = None) -> tuple[int, list[dict]]:
@@ -44,6 +44,9 @@ def test_each_file_is_one_line_in_order_and_a_bad_file_is_an_error_line(tmp_path
     assert [(i["action"], i["target"]) for i in first["intents"]] == [("navigate_to_marker", "bathroom")]
     assert first["resolution"][0]["name"] == "bathroom" and first["transcript"] == first["utterance"]
     assert 0 < first["confidence"] <= 1 and first["latency_s"] > 0 and first["audio_s"] > 1
+    scores = [score for _, score in first["readings"]]
+    assert first["readings"] and scores == sorted(scores, reverse=True), "the recogniser's readings, best first"
+    assert first["transcript"] in [text for text, _ in first["readings"]]
     assert "cannot read it as audio" in lines[1]["error"] and "no such file" in lines[2]["error"]
     assert lines[3]["transcript"] == "" and lines[3]["intents"] == [] and lines[3]["wake"] is False
 

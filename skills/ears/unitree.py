@@ -110,7 +110,8 @@ class UnitreeEars(EarsBackend):
         for heard in hear(source, self.recogniser, self.vocabulary):
             t = heard.transcript
             deliver(heard_line(t.text, "robot_mic", round(t.confidence, 4), round(t.audio_s, 3),
-                               round(heard.start_s, 3), round(t.no_speech, 4), latency_s=round(heard.latency_s, 3)))
+                               round(heard.start_s, 3), round(t.no_speech, 4), latency_s=round(heard.latency_s, 3),
+                               readings=[[t.text, round(t.avg_logprob, 4)], *([a, s] for a, s in t.alternatives)]))
 
     def _follow_asr(self, deliver: Deliver, stopped: threading.Event) -> None:
         self._deliver = deliver

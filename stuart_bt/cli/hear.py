@@ -81,18 +81,18 @@ def cmd_hear(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     vocabulary = resolver.vocabulary(args.name)
     parser = Parser(args.name, require_wake=not args.no_wake)
-    resolve = resolver if (args.markers or args.objects) else None
+    show = bool(args.markers or args.objects)
     write = _writer()
     failed = False
     for path in _expand(args.files):
-        for out in _hear_one(path, args.split, recogniser, vocabulary, parser, resolve):
+        for out in _hear_one(path, args.split, recogniser, vocabulary, parser, resolver, show):
             failed = failed or "error" in out
             write(to_json(out, ensure_ascii=False))
     return EXIT_FAILED if failed else EXIT_OK
 
 
 def _hear_one(path: str, split: bool, recogniser: Any, vocabulary: Any, parser: Any,
-              resolver: Any) -> list[dict[str, Any]]:
+              resolver: Any, show: bool) -> list[dict[str, Any]]:
     from ..hearing.audio import AudioError, read_audio
     from ..hearing.pipeline import hear, transcribe
     from ..hearing.sources import FileSource, PcmSource
@@ -100,26 +100,33 @@ def _hear_one(path: str, split: bool, recogniser: Any, vocabulary: Any, parser: 
     try:
         if path == "-" or split:
             source = PcmSource() if path == "-" else FileSource([path])
-            return [_result(path, h, parser, resolver, split=True) for h in hear(source, recogniser, vocabulary)]
+            return [_result(path, h, parser, resolver, show, split=True) for h in hear(source, recogniser, vocabulary)]
         samples = read_audio(path)
-        return [_result(path, transcribe(recogniser, samples, vocabulary, source=path), parser, resolver)]
+        return [_result(path, transcribe(recogniser, samples, vocabulary, source=path), parser, resolver, show)]
     except AudioError as e:
         return [{"file": path, "error": e.reason}]
 
 
-def _result(path: str, heard: Any, parser: Any, resolver: Any, split: bool = False) -> dict[str, Any]:
+def _result(path: str, heard: Any, parser: Any, resolver: Any, show: bool, split: bool = False) -> dict[str, Any]:
     from ..hearing.pipeline import is_speech
+    from ..language.readings import choose_reading
 
     t = heard.transcript
-    text = t.text if is_speech(t) else ""
+    speech = is_speech(t)
     parse_started = time.perf_counter()
+    readings = [(t.text, t.avg_logprob), *t.alternatives] if speech else [("", 0.0)]
+    chosen = choose_reading(readings, parser, resolver)
+    text = readings[chosen][0]
     result = parser.parse(text)
     out: dict[str, Any] = {"file": path, **result.to_dict()}
-    if resolver is not None:
+    if show:
         out["resolution"] = [None if r is None else r.to_dict() for r in resolver.resolve_all(result.intents)]
     out.update(transcript=text, audio_s=round(t.audio_s, 3), confidence=round(t.confidence, 4),
                no_speech=round(t.no_speech, 4), engine=t.engine,
                latency_s=round(heard.latency_s + time.perf_counter() - parse_started, 3))
+    if chosen:
+        out["recognised"] = t.text
+    out["readings"] = [[r, round(score, 4)] for r, score in readings] if speech else []
     if split:
         out.update(start_s=round(heard.start_s, 3), end_s=round(heard.end_s, 3))
     return out

@@ -23,6 +23,8 @@ from .vocabulary import Vocabulary
 if TYPE_CHECKING:
     import numpy as np
 
+WINDOW_S = 30.0  # whisper hears 30 s at a time
+
 RECOGNISERS: dict[str, str] = {
     "whisper": "stuart_bt.hearing.recognisers:WhisperRecogniser",
 }
@@ -41,9 +43,14 @@ class Transcript:
     audio_s: float
     seconds: float  # time the recogniser took
     engine: str
+    # the recogniser's other readings of the same sound, best first, each (text, avg_logprob);
+    # the grammar may prefer one of them (stuart_bt.language.readings)
+    alternatives: tuple[tuple[str, float], ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        return {k: (round(v, 4) if isinstance(v, float) else v) for k, v in asdict(self).items()}
+        out = {k: (round(v, 4) if isinstance(v, float) else v) for k, v in asdict(self).items() if k != "alternatives"}
+        out["alternatives"] = [[text, round(score, 4)] for text, score in self.alternatives]
+        return out
 
 
 class Recogniser(Protocol):
@@ -77,24 +84,61 @@ class WhisperRecogniser:
             raise AudioError(f"{self.model_dir}: not a CTranslate2 whisper model (no model.bin)")
         self.beam_size = beam_size
         self._model = WhisperModel(str(self.model_dir), device="cpu", compute_type="int8", cpu_threads=threads)
+        self._tokenizer: Any = None
 
     def transcribe(self, samples: np.ndarray, vocabulary: Vocabulary | None = None) -> Transcript:
         started = time.perf_counter()
+        audio = to_float(samples)
+        prompt = vocabulary.prompt() if vocabulary else None
+        if len(audio) > WINDOW_S * 16_000:  # longer than one window: faster-whisper's own loop, one reading
+            text, logprob, no_speech = self._transcribe_long(audio, prompt)
+            readings: list[tuple[str, float]] = [(text, logprob)] if text else []
+        else:
+            readings, no_speech = self._readings(audio, prompt)
+            text, logprob = readings[0] if readings else ("", -math.inf)
+        confidence = math.exp(logprob) * (1.0 - no_speech) if text else 0.0
+        return Transcript(text, confidence, logprob if math.isfinite(logprob) else -99.0, no_speech,
+                          seconds(samples), time.perf_counter() - started, self.name,
+                          tuple((t, round(score, 4)) for t, score in readings[1:]))
+
+    def _readings(self, audio: np.ndarray, prompt: str | None) -> tuple[list[tuple[str, float]], float]:
+        """Every finished beam of one decoding (best first, as (text, average log probability),
+        duplicates dropped) and the no-speech probability. One window of audio, so this calls
+        the model directly: faster-whisper's ``transcribe`` returns only the best beam."""
+        from faster_whisper.audio import pad_or_trim
+        from faster_whisper.tokenizer import Tokenizer
+        from faster_whisper.transcribe import get_suppressed_tokens
+
+        model = self._model
+        if self._tokenizer is None:
+            self._tokenizer = Tokenizer(model.hf_tokenizer, model.model.is_multilingual, task="transcribe",
+                                        language="en")
+        tokenizer = self._tokenizer
+        previous = tokenizer.encode(" " + prompt.strip()) if prompt else None
+        tokens = model.get_prompt(tokenizer, previous_tokens=previous or [], without_timestamps=True)
+        encoded = model.encode(pad_or_trim(model.feature_extractor(audio)))
+        result = model.model.generate(
+            encoded, [tokens], beam_size=self.beam_size, num_hypotheses=self.beam_size, length_penalty=1.0,
+            max_length=model.max_length, return_scores=True, return_no_speech_prob=True, suppress_blank=True,
+            suppress_tokens=get_suppressed_tokens(tokenizer, [-1]))[0]
+        readings: dict[str, float] = {}
+        for ids, score in zip(result.sequences_ids, result.scores, strict=True):
+            text = tokenizer.decode(ids).strip()
+            if text and text not in readings:
+                readings[text] = score * len(ids) / (len(ids) + 1)  # as faster-whisper reports avg_logprob
+        return sorted(readings.items(), key=lambda r: -r[1]), float(result.no_speech_prob)
+
+    def _transcribe_long(self, audio: np.ndarray, prompt: str | None) -> tuple[str, float, float]:
         segments, _ = self._model.transcribe(
-            to_float(samples), language="en", beam_size=self.beam_size,
-            initial_prompt=vocabulary.prompt() if vocabulary else None,
+            audio, language="en", beam_size=self.beam_size, initial_prompt=prompt,
             condition_on_previous_text=False, without_timestamps=True, vad_filter=False)
         pieces = list(segments)
         text = "".join(p.text for p in pieces).strip()
-        if pieces:
-            weights = [max(1, len(p.text)) for p in pieces]
-            logprob = sum(p.avg_logprob * w for p, w in zip(pieces, weights, strict=True)) / sum(weights)
-            no_speech = max(p.no_speech_prob for p in pieces)
-        else:
-            logprob, no_speech = -math.inf, 1.0
-        confidence = math.exp(logprob) * (1.0 - no_speech) if text else 0.0
-        return Transcript(text, confidence, logprob if math.isfinite(logprob) else -99.0, no_speech,
-                          seconds(samples), time.perf_counter() - started, self.name)
+        if not pieces:
+            return "", -math.inf, 1.0
+        weights = [max(1, len(p.text)) for p in pieces]
+        logprob = sum(p.avg_logprob * w for p, w in zip(pieces, weights, strict=True)) / sum(weights)
+        return text, logprob, max(p.no_speech_prob for p in pieces)
 
 
 def make_recogniser(name: str = "whisper", **options: Any) -> Recogniser:

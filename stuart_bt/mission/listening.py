@@ -25,10 +25,11 @@ from ..core.events import Event, EventStream
 from ..hearing.audio import AudioError
 from ..hearing.pipeline import Heard, hear
 from ..hearing.vad import Segmenter
+from ..language.readings import choose_reading
 from .commands import STOP, interpret
 
 if TYPE_CHECKING:
-    from ..hearing.recognisers import Recogniser
+    from ..hearing.recognisers import Recogniser, Transcript
     from ..hearing.sources import Source
     from ..hearing.vocabulary import Vocabulary
     from .commands import Command
@@ -142,7 +143,10 @@ def take_heard(robot: MissionExecutor, heard: Heard) -> Command | None:
 
 def act_on_heard(robot: MissionExecutor, fields: dict[str, Any]) -> Command | None:
     """:func:`take_heard` for an utterance described by its :func:`hearing_fields` (the robot's
-    own ears describe what they heard in a daemon's progress line, not as a :class:`Heard`)."""
+    own ears describe what they heard in a daemon's progress line, not as a :class:`Heard`).
+    With the recogniser's other ``readings``, the one to act on is chosen first
+    (:func:`~stuart_bt.language.readings.choose_reading`); ``recognised`` then keeps its best."""
+    fields = chosen_reading(robot, fields)
     if fields["over_robot_speech"]:
         command = interpret(robot.parser, fields["text"], robot.attention.held())
         if command.kind != STOP:
@@ -154,6 +158,16 @@ def act_on_heard(robot: MissionExecutor, fields: dict[str, Any]) -> Command | No
                         heard={k: fields.get(k) for k in HEARD_IN_UTTERANCE})
 
 
+def chosen_reading(robot: MissionExecutor, fields: dict[str, Any]) -> dict[str, Any]:
+    """``fields`` with ``text`` the reading to act on (and ``recognised`` the recogniser's best,
+    when that is another)."""
+    readings = [(str(r[0]), float(r[1])) for r in fields.get("readings") or []]
+    index = choose_reading(readings, robot.parser, robot.resolver) if readings else 0
+    if index == 0:
+        return fields
+    return {**fields, "text": readings[index][0], "recognised": fields["text"]}
+
+
 HEARD_IN_UTTERANCE = ("audio_s", "confidence", "no_speech", "latency_s", "engine")
 
 
@@ -163,4 +177,10 @@ def hearing_fields(heard: Heard) -> dict[str, Any]:
     return {"text": heard.text, "source": heard.source, "audio_s": round(t.audio_s, 3),
             "confidence": round(t.confidence, 4), "no_speech": round(t.no_speech, 4),
             "latency_s": round(heard.latency_s, 3), "engine": t.engine, "start_s": round(heard.start_s, 3),
-            "over_robot_speech": heard.over_robot_speech}
+            "over_robot_speech": heard.over_robot_speech,
+            **({"readings": readings_of(t)} if t.alternatives else {})}
+
+
+def readings_of(transcript: Transcript) -> list[list[Any]]:
+    """The recogniser's readings, best first, as [text, average log probability] (strict JSON)."""
+    return [[transcript.text, round(transcript.avg_logprob, 4)], *([a, s] for a, s in transcript.alternatives)]

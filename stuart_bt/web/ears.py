@@ -14,7 +14,7 @@ import threading
 from typing import TYPE_CHECKING, Any
 
 from ..hearing.pipeline import is_speech, transcribe
-from ..mission.listening import hearing_fields, take_heard
+from ..mission.listening import chosen_reading, hearing_fields, take_heard
 
 if TYPE_CHECKING:
     import numpy as np
@@ -48,7 +48,7 @@ class BrowserEars:
         with self._lock:
             heard = transcribe(self.recogniser(), samples, self.robot.resolver.vocabulary(), source=SOURCE,
                                ended_at=ended_at)
-        fields = hearing_fields(heard)
+        fields = chosen_reading(self.robot, hearing_fields(heard))
         if not is_speech(heard.transcript):
             self.robot.events.publish("heard", acted=False, reason="no_speech", **fields)
             return {**fields, "kind": "no_speech", "intents": []}

@@ -1,0 +1,47 @@
+"""Which of a recogniser's readings of one utterance to act on.
+
+A recogniser's best reading is the likeliest *text*, not the likeliest *command*: beam search
+keeps several readings of the same sound, and the best one is often a near miss of what the
+robot can do ("head to it, go to the 3D printers", "could you go turn the kitchen") while the
+next one, a hair less likely, is the command itself. So when the best reading is not a clear
+command, a reading that is one, and whose average log probability trails the best by no more
+than ``margin``, is taken instead. A clear command is addressed to the robot (the wake phrase),
+gives intents, and every target it names resolves on the map or among the objects and gestures.
+The margin keeps the sound in charge: a reading far less likely than the best is never chosen
+because it would be convenient, and talk stays talk (a non-command's other readings are its
+own words, rarely a clear command within the margin; the hearing benchmark counts any).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .parse import Parser
+    from .resolve import Resolver
+
+READING_MARGIN = 0.15  # average log probability per token a command reading may trail the best by
+
+
+def is_clear_command(text: str, parser: Parser, resolver: Resolver) -> bool:
+    """Addressed to the robot, with intents, every target resolved."""
+    result = parser.parse(text)
+    if not result.wake or not result.intents:
+        return False
+    return all(r is None or r.ok for r in resolver.resolve_all(result.intents))
+
+
+def choose_reading(readings: Sequence[tuple[str, float]], parser: Parser, resolver: Resolver,
+                   margin: float = READING_MARGIN) -> int:
+    """Index into ``readings`` ((text, average log probability), best first) of the one to act
+    on: the best, unless it is no clear command and a reading within ``margin`` of it is."""
+    if len(readings) < 2 or is_clear_command(readings[0][0], parser, resolver):
+        return 0
+    best = readings[0][1]
+    for index, (text, score) in enumerate(readings[1:], 1):
+        if score < best - margin:
+            break
+        if is_clear_command(text, parser, resolver):
+            return index
+    return 0

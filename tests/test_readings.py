@@ -1,0 +1,52 @@
+"""Which reading of an utterance the robot acts on: the recogniser's best, unless that is no
+clear command and a reading a hair less likely is one."""
+
+from __future__ import annotations
+
+import pytest
+
+from stuart_bt.language.parse import Parser
+from stuart_bt.language.readings import READING_MARGIN, choose_reading, is_clear_command
+from stuart_bt.language.resolve import Resolver
+from stuart_bt.testing import lab_markers
+
+
+@pytest.fixture(scope="module")
+def lab() -> tuple[Parser, Resolver]:
+    return Parser(), Resolver.from_files(lab_markers())
+
+
+@pytest.mark.parametrize("text,clear", [
+    ("Hey Stuart, go to the kitchen", True),
+    ("Hey Stuart, stop.", True),
+    ("head to it, go to the kitchen", False),         # not addressed to the robot
+    ("Hey Stuart, go to the morning", False),         # a place nobody knows
+    ("Hey Stuart, how are you?", False),              # talk
+    ("go to the kitchen", False),
+])
+def test_a_clear_command_is_addressed_has_intents_and_resolves(lab, text, clear):
+    assert is_clear_command(text, *lab) is clear
+
+
+def test_the_best_reading_wins_when_it_is_a_clear_command(lab):
+    readings = [("Hey Stuart, go to the kitchen", -0.2), ("Hey Stuart, go to the bathroom", -0.21)]
+    assert choose_reading(readings, *lab) == 0
+
+
+def test_a_command_a_hair_less_likely_than_a_near_miss_is_taken(lab):
+    readings = [("head to it, go to the 3D printers", -0.15), ("hey Stuart, turn left", -0.155),
+                ("hey Stuart, go to the 3D printers", -0.16)]
+    assert choose_reading(readings, *lab) == 1, "the first clear command within the margin, in order"
+
+
+def test_a_command_far_less_likely_than_the_best_reading_is_not_taken(lab):
+    readings = [("head to it, go to the 3D printers", -0.2),
+                ("hey Stuart, go to the 3D printers", -0.21 - READING_MARGIN)]
+    assert choose_reading(readings, *lab) == 0
+
+
+def test_talk_stays_talk_when_no_reading_is_a_clear_command(lab):
+    readings = [("Hey Stuart, good morning", -0.3), ("hey Stuart, go to the morning", -0.31),
+                ("Hey Stuart, good morning!", -0.32)]
+    assert choose_reading(readings, *lab) == 0
+    assert choose_reading([], *lab) == 0 and choose_reading([("hello", -0.1)], *lab) == 0
