@@ -7,6 +7,9 @@ one JSON object per line; everything it receives is printed on stdout, one JSON 
 - ``{"pub": "audio_msg", "data": "Hey Stuart, go to the kitchen"}``: publish a std_msgs/String
   (after the bridge's subscription is matched); prints ``{"sent": "/audio_msg", "t": ...}``;
 - ``{"pub_int": "audio_msg", "data": 7}``: publish a std_msgs/Int32 on that topic (a wrong type);
+- ``{"sub": "audio_msg"}``: also print the Strings on that topic, from now on; prints
+  ``{"subscribed": "/audio_msg"}`` once a publisher (the bridge's) is matched. (Not for a topic
+  this client also publishes on: its own subscription would count as the bridge's.)
 - ``{"quit": true}`` or end of input: exit.
 
 Printed: ``{"ready": true}`` once the bridge's publishers are seen; ``{"topic", "data", "t"}`` per
@@ -93,7 +96,15 @@ def main() -> int:
         cmd = json.loads(line)
         if cmd.get("quit"):
             break
-        if "pub" in cmd:
+        if "sub" in cmd:
+            full = node.resolve_topic_name(cmd["sub"])
+            sub = node.create_subscription(String, cmd["sub"], lambda m, full=full: emit(
+                {"topic": full, "data": m.data, "t": time.monotonic()}), qos)
+            end = time.monotonic() + DISCOVERY_WAIT
+            while sub.get_publisher_count() == 0 and time.monotonic() < end:
+                time.sleep(0.01)
+            emit({"subscribed": full})
+        elif "pub" in cmd:
             pub = publishers.get(cmd["pub"]) or node.create_publisher(String, cmd["pub"], qos)
             end = time.monotonic() + DISCOVERY_WAIT
             while pub.get_subscription_count() == 0 and time.monotonic() < end:

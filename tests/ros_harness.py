@@ -7,6 +7,8 @@ plain rclpy program that knows only topic names) and collects what it receives.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
 import signal
@@ -70,12 +72,17 @@ class Lines:
 class BridgeProcess:
     """``stuart-bt ros ARGS`` in its own process; ``up()`` waits for its ready line."""
 
-    def __init__(self, *args: str, env: dict[str, str] | None = None) -> None:
+    def __init__(self, *args: str, env: dict[str, str] | None = None, stdin: int = subprocess.DEVNULL) -> None:
+        """``stdin=subprocess.PIPE`` to feed it (``--hear -``: raw PCM, written with ``feed``)."""
         self.proc = subprocess.Popen([sys.executable, "-m", "stuart_bt.cli", "ros", *args], env=env or ros_env(),
-                                     stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True)
-        self.out = Lines(self.proc.stdout)
-        self.err = Lines(self.proc.stderr)
+                                     stdin=stdin, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.out = Lines(io.TextIOWrapper(self.proc.stdout, encoding="utf-8"))
+        self.err = Lines(io.TextIOWrapper(self.proc.stderr, encoding="utf-8"))
+
+    def feed(self, data: bytes) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write(data)
+        self.proc.stdin.flush()
 
     def up(self) -> str:
         line = self.out.wait_for(lambda x: x.startswith("ros bridge: node"), START_WAIT)
@@ -89,6 +96,9 @@ class BridgeProcess:
         return descendants(self.proc.pid)
 
     def stop(self, sig: int = signal.SIGTERM, timeout: float = 60.0) -> int:
+        if self.proc.stdin is not None and not self.proc.stdin.closed:
+            with contextlib.suppress(OSError):
+                self.proc.stdin.close()
         if self.proc.poll() is None:
             self.proc.send_signal(sig)
         try:

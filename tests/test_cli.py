@@ -167,7 +167,15 @@ class BackgroundRun:
         os.killpg(self.proc.pid, signal.SIGINT)
 
     def finish(self, timeout: float) -> int:
-        return self.proc.wait(timeout)
+        """The exit status; a run still going after ``timeout`` is asked for its threads' stacks
+        (SIGUSR1: docs/running.md) and the test fails with them."""
+        try:
+            return self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.proc.send_signal(signal.SIGUSR1)
+            time.sleep(1.0)
+            stacks = self.stderr[-6000:]
+            raise AssertionError(f"the run did not end within {timeout} s; its threads:\n{stacks}") from None
 
     @property
     def stdout(self) -> str:

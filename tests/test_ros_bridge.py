@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 import signal
 import subprocess
 import sys
@@ -234,3 +235,32 @@ def test_a_bad_namespace_domain_or_options_file_is_one_clear_line_and_nothing_st
     assert len(bad_options.err.lines) == 1
     assert "unknown family 'gesturs' (did you mean 'gesture'?)" in bad_options.err.lines[0]
     assert bad_ns.out.lines == bad_domain.out.lines == bad_options.out.lines == []  # no node, no daemons
+
+
+@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="espeak-ng is not installed (make test installs it)")
+def test_what_the_bridge_hears_is_acted_on_once_and_published_on_audio_msg(tmp_path):
+    pytest.importorskip("faster_whisper", reason="the 'hearing' extra is not installed (make test installs it)")
+    import numpy as np
+
+    from stuart_bt.hearing.audio import read_audio
+    from stuart_bt.testing import speak
+
+    clip = read_audio(speak("Hey Stuart, go to the bathroom", tmp_path / "go.wav", "en-gb+m3"))
+    pcm = np.concatenate([np.zeros(8_000, np.int16), clip, np.zeros(24_000, np.int16)]).astype("<i2").tobytes()
+    with BridgeProcess("--backend", "dry", "--speed", "20", "--hear", "-", stdin=subprocess.PIPE) as bridge:
+        bridge.up()
+        with RosClient() as client:
+            client.proc.stdin.write(json.dumps({"sub": "audio_msg"}) + "\n")
+            client.proc.stdin.flush()
+            assert client.out.wait_for(lambda x: '"subscribed"' in x, 30) is not None
+            bridge.feed(pcm)
+            published = client.wait_for(lambda m: m.get("topic") == "/audio_msg")
+            client.wait_for(lambda m: m.get("topic") == "/bt/events" and '"phase":"finished"' in m["data"], timeout=60)
+            time.sleep(1.0)  # time enough for the bridge's own /audio_msg message to come back to it
+            said = utterances(client)
+        assert bridge.stop() == 0
+
+    assert "bathroom" in published["data"].lower()
+    assert [(u["source"], u["text"]) for u in said] == [("stdin", published["data"])], \
+        "heard once, and the bridge's own /audio_msg message was not taken as a second command"
+    assert [i["target"] for i in intents(client)] == ["bathroom"]

@@ -36,7 +36,7 @@ from ..mission.executor import Mission, MissionExecutor, MissionOptions
 from ..run.executor import RunOutcome
 from ..tree.render import render
 from ..tree.spec import NodeSpec, TreeSpec
-from .hear import add_hearing_arguments
+from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
 
@@ -314,7 +314,7 @@ def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO 
                                  propose_tasks=args.propose,
                                  daemon_options={k: v for k, v in daemon_options.items() if k != "ears"})
         chat = Chat(options, out)
-        listener = _listener(args, chat, daemon_options.get("ears", {}))
+        listener = make_listener(args.hear, chat.robot, args, daemon_options.get("ears", {}))
     except (StuartError, ValueError, RuntimeError) as e:  # bad options, a missing model file, no microphone
         print(f"stuart-bt: {e}", file=sys.stderr)
         return EXIT_FAILED
@@ -364,24 +364,6 @@ def _until_heard(chat: Chat, listener: Any) -> None:
     while not listener.done.wait(SLICE):
         pass
     chat.wait_idle(EOF_WAIT)
-
-
-def _listener(args: argparse.Namespace, chat: Chat, ears_options: dict[str, Any]) -> Any:
-    """The hearing pipeline in front of the chat's robot, if ``--hear`` asked for one: the
-    robot's own ears (a daemon, started here) or a source heard in this process."""
-    if not args.hear:
-        return None
-    from ..mission.robot_ears import RobotEars, is_robot_source
-
-    if is_robot_source(args.hear):
-        return RobotEars(chat.robot, args.hear, ears_options)
-    from ..hearing.sources import open_source
-    from ..mission.listening import Listener
-    from .hear import make_recogniser
-
-    recogniser = make_recogniser(args)
-    vocabulary = chat.robot.resolver.vocabulary()
-    return Listener(chat.robot, open_source(args.hear, live=True), recogniser, vocabulary)
 
 
 def _lines(stdin: TextIO) -> queue.Queue[str | None]:

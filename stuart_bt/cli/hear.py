@@ -68,6 +68,23 @@ def make_recogniser(args: argparse.Namespace) -> Any:
     return make(args.engine, **options)
 
 
+def make_listener(spec: str | None, robot: Any, args: argparse.Namespace, ears_options: dict[str, Any]) -> Any:
+    """The hearing in front of ``robot`` (a mission executor) for ``--hear``/``--source`` ``spec``:
+    the robot's own ears (a daemon) or a source heard in this process; None without a spec.
+    Shared by ``chat``, ``listen`` and ``ros``, so every front end hears the same way."""
+    if not spec:
+        return None
+    from ..mission.robot_ears import RobotEars, is_robot_source
+
+    if is_robot_source(spec):
+        return RobotEars(robot, spec, ears_options)
+    from ..hearing.sources import open_source
+    from ..mission.listening import Listener
+
+    recogniser = make_recogniser(args)
+    return Listener(robot, open_source(spec, live=True), recogniser, robot.resolver.vocabulary())
+
+
 def cmd_hear(args: argparse.Namespace) -> int:
     from ..hearing.audio import AudioError
     from ..language.parse import Parser

@@ -169,6 +169,16 @@ def _daemon_options(file: str | None, also: tuple[str, ...] = ()) -> dict[str, d
     return data
 
 
+def _stacks_on_sigusr1() -> None:
+    """``kill -USR1 PID`` prints every thread's stack on stderr and the program goes on: what a
+    command that seems stuck is waiting for, without a debugger (tests use it when a run does
+    not end in time)."""
+    import faulthandler
+
+    if hasattr(signal, "SIGUSR1"):
+        faulthandler.register(signal.SIGUSR1, all_threads=True, chain=False)
+
+
 def _exit_quietly(signum: int, _frame: Any) -> None:
     sys.stdout.flush()
     os._exit(128 + signum)
@@ -268,6 +278,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser(next((w for w in words if not w.startswith("-")), ""))
     args = parser.parse_args(words)
     args.restore_signals = argv is not None  # called from Python rather than as the stuart-bt program
+    if not args.restore_signals:
+        _stacks_on_sigusr1()
     func: Callable[[argparse.Namespace], int] = args.func
     try:
         return func(args)

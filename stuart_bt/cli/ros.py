@@ -17,6 +17,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
 
@@ -41,6 +42,9 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--daemon-options", metavar="FILE",
                    help="JSON or YAML: {family: {option: value}} for the daemons (as for stuart-bt run)")
     p.add_argument("--log", type=Path, metavar="OUT.jsonl", help="also write every event, one JSON object per line")
+    p.add_argument("--hear", metavar="SOURCE", help="also hear SOURCE (mic, mic:DEVICE, file:PATH, -, robot, "
+                                                     "robot:asr) and publish what is heard on /audio_msg")
+    add_hearing_arguments(p)
     add_llm_arguments(p)
     p.set_defaults(func=cmd_ros)
     return p
@@ -54,7 +58,8 @@ def cmd_ros(args: argparse.Namespace) -> int:
     from ..mission.executor import MissionExecutor, MissionOptions
     from ..ros.node import Bridge  # rclpy loads here, and only in this process
 
-    daemon_options = _daemon_options(args.daemon_options)  # a bad file: one line (UserError), nothing started
+    daemon_options = _daemon_options(args.daemon_options, also=("ears",))  # a bad file: one line, nothing started
+    ears_options = daemon_options.pop("ears", {})
     if args.confirm_picks:
         daemon_options.setdefault("pick", {})["confirm"] = True
     options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, log=args.log,
@@ -70,13 +75,19 @@ def cmd_ros(args: argparse.Namespace) -> int:
             return EXIT_FAILED
         with robot:
             bridge = Bridge(robot, namespace=_namespace(args.namespace), status_rate=args.status_rate)
+            listener = None
             try:
                 bridge.start()
+                listener = make_listener(args.hear, robot, args, ears_options)
+                if listener is not None:
+                    listener.start()
                 _announce(bridge, robot)
                 while not stop.wait(0.2):
                     pass
                 robot.close()  # the tree halts and the daemons stop while the node still reports it
             finally:
+                if listener is not None:
+                    listener.close()
                 bridge.close()
     finally:
         for signum, handler in previous.items():

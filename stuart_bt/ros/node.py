@@ -14,6 +14,8 @@ import contextlib
 import math
 import queue
 import threading
+import time
+from collections import deque
 from collections.abc import Callable
 from typing import Any
 
@@ -41,6 +43,7 @@ except ImportError:  # pragma: no cover - the extra installs it
 
 NODE_NAME = "stuart_bridge"
 QUEUE_DEPTH = 10
+OWN_SPEECH_S = 10.0  # s: how long an utterance this node published on AUDIO_IN may take to come back to it
 SPIN_SLICE = 0.1  # s: the spinning thread checks for shutdown this often
 
 
@@ -67,7 +70,8 @@ class Bridge:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.publishers: dict[str, Any] = {
             key: self.node.create_publisher(String, key, reliable)
-            for key in (t.TASK_INTENT, t.RESPONSE, t.EVENTS, t.MEMORY_SUMMARY)}
+            for key in (t.TASK_INTENT, t.RESPONSE, t.EVENTS, t.MEMORY_SUMMARY, t.AUDIO_IN)}
+        self._own_speech: deque[tuple[str, float]] = deque(maxlen=32)  # what this node said on AUDIO_IN
         self.publishers[t.STATUS] = self.node.create_publisher(String, t.STATUS, latched)
         self.publishers[t.POSE] = self.node.create_publisher(PoseStamped, t.POSE, reliable)
         if MarkerArray is not None:
@@ -161,7 +165,19 @@ class Bridge:
         elif out.topic == t.MEMORY_MARKERS:
             publisher.publish(self._markers(out.payload))
         else:
+            if out.topic == t.AUDIO_IN:  # heard here: our own subscription will get it back
+                self._own_speech.append((t.clean_text(out.payload) or "", time.monotonic()))
             publisher.publish(String(data=out.payload))
+
+    def _is_own_speech(self, text: str) -> bool:
+        """Was ``text`` published on AUDIO_IN by this node (what it heard itself) lately? Then
+        it was already acted on; every other node on the topic still gets it."""
+        now = time.monotonic()
+        for k, (said, at) in enumerate(self._own_speech):
+            if said == text and now - at < OWN_SPEECH_S:
+                del self._own_speech[k]
+                return True
+        return False
 
     def _publish_status(self) -> None:
         if self.snapshot.seq != self._status_seq:
@@ -220,7 +236,7 @@ class Bridge:
         """The callback of a text input: ``woken`` when that topic's text passed a wake filter."""
         def on_message(msg: String) -> None:
             text = self._text(topic, msg)
-            if text is not None:
+            if text is not None and not (topic == t.AUDIO_IN and self._is_own_speech(text)):
                 self.robot.submit(text, woken=woken, source=f"ros:{topic}")
         return on_message
 

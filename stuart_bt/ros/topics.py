@@ -48,6 +48,8 @@ class EventTranslator:
       objects, a leading "stop" included), in the order they were said;
     - ``command`` tts ``say`` -> RESPONSE with the spoken text; when it is a conversation
       ``reply`` that carried gestures, their tags follow it (``"Hello! [high wave]"``);
+    - ``heard`` (speech this process heard and acted on, from a source other than ROS itself) ->
+      AUDIO_IN with its text, as the robot's recogniser published it in the original system;
     - ``pose`` -> POSE; ``memory`` (perception's spatial memory summary, after a ``find``) ->
       MEMORY_SUMMARY (the summary itself) and MEMORY_MARKERS (its well-formed objects);
     - every event -> EVENTS, as its JSON-lines log line.
@@ -69,6 +71,8 @@ class EventTranslator:
             if text:
                 tags = self._tagged.pop(text, [])
                 out.append(Outgoing(RESPONSE, " ".join([text, *(f"[{g}]" for g in tags)])))
+        elif event.kind == "heard" and d.get("acted") and not str(d.get("source", "")).startswith("ros:"):
+            out.append(Outgoing(AUDIO_IN, str(d.get("text", ""))))
         elif event.kind == "pose" and all(isinstance(d.get(k), (int, float)) for k in ("x", "y")):
             out.append(Outgoing(POSE, {"x": float(d["x"]), "y": float(d["y"]), "yaw": float(d.get("yaw") or 0.0)}))
         elif event.kind == "memory":  # the stuart_bt.memory/1 summary (docs/perception.md), as it is
