@@ -85,7 +85,7 @@ def run(quick: bool) -> list[Result]:
     from stuart_bt.conversation.prompt import build_messages
 
     local = LlamaConversation(max_tokens=MAX_TOKENS, temperature=0.0, seed=0)
-    prompts = PROMPTS[:3] if quick else PROMPTS
+    prompts = PROMPTS[:1] if quick else PROMPTS
     rounds = 1 if quick else 2
     local.complete(build_messages(prompts[0], CONTEXT))
     cold = local.last_timing["first_token_s"]

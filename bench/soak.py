@@ -228,9 +228,9 @@ def ros_flood(seconds: float, warm_commands: int) -> list[Result]:
 
 def run(quick: bool) -> list[Result]:
     speed = {"speed": 50.0}
-    dry = mission_soak("dry", "dry", DRY_SCRIPT, 40 if quick else 1000, 10 if quick else 100, **speed)
+    dry = mission_soak("dry", "dry", DRY_SCRIPT, 20 if quick else 1000, 10 if quick else 100, **speed)
     results = footprint_results(dry)
-    sim = mission_soak("sim", "sim", SIM_SCRIPT, 5 if quick else 100, 2 if quick else 10)
+    sim = mission_soak("sim", "sim", SIM_SCRIPT, 3 if quick else 100, 2 if quick else 10)
     results += footprint_results(sim)
     try:
         results += ros_flood(3.0 if quick else 30.0, 2 if quick else 5)
