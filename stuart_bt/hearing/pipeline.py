@@ -1,11 +1,11 @@
 """Source -> utterances -> transcripts: the hearing stage as one loop.
 
 :func:`hear` reads a source, cuts it into utterances (:mod:`.vad`) and transcribes each
-(:mod:`.recognisers`), yielding :class:`Heard` in order. ``latency_s`` is measured from the end
-of the utterance's audio (when the segmenter decided speech had ended, or, for a whole file,
-when it was read) to the transcript; the caller adds the time its parse takes. What was heard
-over the robot's own voice is marked, and a recogniser's empty or no-speech result is dropped
-(noise the voice detector let through).
+(:mod:`.recognisers`, after :mod:`.denoise` took the steady noise out), yielding :class:`Heard`
+in order. ``latency_s`` is measured from the end of the utterance's audio (when the segmenter
+decided speech had ended, or, for a whole file, when it was read) to the transcript; the
+caller adds the time its parse takes. What was heard over the robot's own voice is marked, and
+a recogniser's empty or no-speech result is dropped (noise the voice detector let through).
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .audio import AudioError
+from .denoise import suppress_noise
 from .recognisers import Recogniser, Transcript
 from .sources import Source
 from .vad import Segment, Segmenter
@@ -52,10 +53,12 @@ def is_speech(transcript: Transcript) -> bool:
 
 
 def transcribe(recogniser: Recogniser, samples: np.ndarray, vocabulary: Vocabulary | None, start_s: float = 0.0,
-               source: str = "", over_robot_speech: bool = False, ended_at: float | None = None) -> Heard:
-    """One utterance's samples -> :class:`Heard` (``ended_at``: ``perf_counter()`` when its audio ended)."""
+               source: str = "", over_robot_speech: bool = False, ended_at: float | None = None,
+               denoise: bool = True) -> Heard:
+    """One utterance's samples -> :class:`Heard` (``ended_at``: ``perf_counter()`` when its audio
+    ended), its steady noise suppressed first unless ``denoise`` is False (:mod:`.denoise`)."""
     ended = time.perf_counter() if ended_at is None else ended_at
-    transcript = recogniser.transcribe(samples, vocabulary)
+    transcript = recogniser.transcribe(suppress_noise(samples) if denoise else samples, vocabulary)
     return Heard(transcript, start_s, start_s + transcript.audio_s, time.perf_counter() - ended,
                  over_robot_speech, source)
 
