@@ -61,6 +61,9 @@ def start_session() -> tuple[str, Path]:
     folder = Path(tempfile.mkdtemp(prefix="stuart_bt-tests-"))
     os.environ[MARK] = mark
     os.environ["TMPDIR"] = str(folder)
+    # PortAudio's PulseAudio client (listing microphones) would make a runtime folder and link it
+    # from ~/.config/pulse; with its own path it makes neither outside this folder
+    os.environ["PULSE_RUNTIME_PATH"] = str(folder / "pulse")
     tempfile.tempdir = None  # gettempdir() looks at TMPDIR again
     return mark, folder
 
