@@ -109,8 +109,8 @@ def _hear_all(recogniser: Any, clips: list[Any], vocabulary: Any, parser: Any,
     for clip in clips:
         heard = transcribe(recogniser, clip, vocabulary)
         t = heard.transcript
-        readings = [(t.text, t.avg_logprob), *t.alternatives] if is_speech(t) else [("", 0.0)]
-        text = readings[choose_reading(readings, parser, resolver)][0]
+        readings = t.readings() if is_speech(t) else []
+        text = readings[choose_reading(readings, parser, resolver)][0] if readings else ""
         meant.append(_meaning(parser, text, resolver))
         latency.append(heard.latency_s)
         rtf.append(heard.transcript.seconds / max(heard.transcript.audio_s, 1e-6))

@@ -111,7 +111,7 @@ class UnitreeEars(EarsBackend):
             t = heard.transcript
             deliver(heard_line(t.text, "robot_mic", round(t.confidence, 4), round(t.audio_s, 3),
                                round(heard.start_s, 3), round(t.no_speech, 4), latency_s=round(heard.latency_s, 3),
-                               readings=[[t.text, round(t.avg_logprob, 4)], *([a, s] for a, s in t.alternatives)]))
+                               readings=[list(r) for r in t.readings()]))
 
     def _follow_asr(self, deliver: Deliver, stopped: threading.Event) -> None:
         self._deliver = deliver

@@ -131,9 +131,9 @@ def _result(path: str, heard: Any, parser: Any, resolver: Any, show: bool, split
     t = heard.transcript
     speech = is_speech(t)
     parse_started = time.perf_counter()
-    readings = [(t.text, t.avg_logprob), *t.alternatives] if speech else [("", 0.0)]
+    readings = t.readings() if speech else []
     chosen = choose_reading(readings, parser, resolver)
-    text = readings[chosen][0]
+    text = readings[chosen][0] if readings else ""
     result = parser.parse(text)
     out: dict[str, Any] = {"file": path, **result.to_dict()}
     if show:
@@ -143,7 +143,7 @@ def _result(path: str, heard: Any, parser: Any, resolver: Any, show: bool, split
                latency_s=round(heard.latency_s + time.perf_counter() - parse_started, 3))
     if chosen:
         out["recognised"] = t.text
-    out["readings"] = [[r, round(score, 4)] for r, score in readings] if speech else []
+    out["readings"] = [list(r) for r in readings]
     if split:
         out.update(start_s=round(heard.start_s, 3), end_s=round(heard.end_s, 3))
     return out

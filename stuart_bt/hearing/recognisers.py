@@ -47,6 +47,11 @@ class Transcript:
     # the grammar may prefer one of them (stuart_bt.language.readings)
     alternatives: tuple[tuple[str, float], ...] = ()
 
+    def readings(self) -> list[tuple[str, float]]:
+        """Every reading, best first, as (text, average log probability); none when nothing was
+        heard as speech (the caller decides that: :func:`~stuart_bt.hearing.pipeline.is_speech`)."""
+        return [(self.text, round(self.avg_logprob, 4)), *self.alternatives] if self.text else []
+
     def to_dict(self) -> dict[str, Any]:
         out = {k: (round(v, 4) if isinstance(v, float) else v) for k, v in asdict(self).items() if k != "alternatives"}
         out["alternatives"] = [[text, round(score, 4)] for text, score in self.alternatives]
@@ -85,6 +90,8 @@ class WhisperRecogniser:
         self.beam_size = beam_size
         self._model = WhisperModel(str(self.model_dir), device="cpu", compute_type="int8", cpu_threads=threads)
         self._tokenizer: Any = None
+        self._suppress: list[int] = []
+        self._prompts: dict[str | None, list[int]] = {}  # prompt text -> decoder prompt tokens (one per vocabulary)
 
     def transcribe(self, samples: np.ndarray, vocabulary: Vocabulary | None = None) -> Transcript:
         started = time.perf_counter()
@@ -113,14 +120,18 @@ class WhisperRecogniser:
         if self._tokenizer is None:
             self._tokenizer = Tokenizer(model.hf_tokenizer, model.model.is_multilingual, task="transcribe",
                                         language="en")
+            self._suppress = get_suppressed_tokens(self._tokenizer, [-1])
         tokenizer = self._tokenizer
-        previous = tokenizer.encode(" " + prompt.strip()) if prompt else None
-        tokens = model.get_prompt(tokenizer, previous_tokens=previous or [], without_timestamps=True)
+        tokens = self._prompts.get(prompt)
+        if tokens is None:  # the same vocabulary every utterance: tokenised once
+            previous = tokenizer.encode(" " + prompt.strip()) if prompt else []
+            tokens = self._prompts[prompt] = model.get_prompt(tokenizer, previous_tokens=previous,
+                                                              without_timestamps=True)
         encoded = model.encode(pad_or_trim(model.feature_extractor(audio)))
         result = model.model.generate(
             encoded, [tokens], beam_size=self.beam_size, num_hypotheses=self.beam_size, length_penalty=1.0,
             max_length=model.max_length, return_scores=True, return_no_speech_prob=True, suppress_blank=True,
-            suppress_tokens=get_suppressed_tokens(tokenizer, [-1]))[0]
+            suppress_tokens=self._suppress)[0]
         readings: dict[str, float] = {}
         for ids, score in zip(result.sequences_ids, result.scores, strict=True):
             text = tokenizer.decode(ids).strip()

@@ -34,6 +34,11 @@ class Vocabulary:
             return tuple(dict.fromkeys(w.strip().replace("_", " ") for w in words if w and w.strip()))
         return cls(name, clean(places), clean(objects), clean(gestures), clean(extra))
 
+    def to_dict(self) -> dict[str, object]:
+        """Plain JSON (a daemon option); :meth:`of` takes it back."""
+        return {"name": self.name, "places": list(self.places), "objects": list(self.objects),
+                "gestures": list(self.gestures), "extra": list(self.extra)}
+
     def prompt(self) -> str:
         """Context text for the recogniser: commands in the form people say them, naming every
         place, object and gesture once, and the amounts and units the grammar reads."""

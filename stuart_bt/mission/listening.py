@@ -29,7 +29,7 @@ from ..language.readings import choose_reading
 from .commands import STOP, interpret
 
 if TYPE_CHECKING:
-    from ..hearing.recognisers import Recogniser, Transcript
+    from ..hearing.recognisers import Recogniser
     from ..hearing.sources import Source
     from ..hearing.vocabulary import Vocabulary
     from .commands import Command
@@ -146,7 +146,11 @@ def act_on_heard(robot: MissionExecutor, fields: dict[str, Any]) -> Command | No
     own ears describe what they heard in a daemon's progress line, not as a :class:`Heard`).
     With the recogniser's other ``readings``, the one to act on is chosen first
     (:func:`~stuart_bt.language.readings.choose_reading`); ``recognised`` then keeps its best."""
-    fields = chosen_reading(robot, fields)
+    return act_on_reading(robot, chosen_reading(robot, fields))
+
+
+def act_on_reading(robot: MissionExecutor, fields: dict[str, Any]) -> Command | None:
+    """:func:`act_on_heard` once the reading to act on is ``fields["text"]`` (:func:`chosen_reading`)."""
     if fields["over_robot_speech"]:
         command = interpret(robot.parser, fields["text"], robot.attention.held())
         if command.kind != STOP:
@@ -178,9 +182,4 @@ def hearing_fields(heard: Heard) -> dict[str, Any]:
             "confidence": round(t.confidence, 4), "no_speech": round(t.no_speech, 4),
             "latency_s": round(heard.latency_s, 3), "engine": t.engine, "start_s": round(heard.start_s, 3),
             "over_robot_speech": heard.over_robot_speech,
-            **({"readings": readings_of(t)} if t.alternatives else {})}
-
-
-def readings_of(transcript: Transcript) -> list[list[Any]]:
-    """The recogniser's readings, best first, as [text, average log probability] (strict JSON)."""
-    return [[transcript.text, round(transcript.avg_logprob, 4)], *([a, s] for a, s in transcript.alternatives)]
+            **({"readings": [list(r) for r in t.readings()]} if t.alternatives else {})}

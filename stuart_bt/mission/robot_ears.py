@@ -29,7 +29,6 @@ from .listening import RobotVoice, act_on_heard
 
 if TYPE_CHECKING:
     from ..daemon.client import Request
-    from ..hearing.vocabulary import Vocabulary
     from .executor import MissionExecutor
 
 FAMILY = "ears"
@@ -42,28 +41,20 @@ def is_robot_source(spec: str) -> bool:
     return spec in MODES
 
 
-def vocabulary_option(vocabulary: Vocabulary) -> dict[str, Any]:
-    """The vocabulary as the ears daemon's ``vocabulary`` option (plain JSON)."""
-    return {"name": vocabulary.name, "places": list(vocabulary.places), "objects": list(vocabulary.objects),
-            "gestures": list(vocabulary.gestures), "extra": list(vocabulary.extra)}
-
-
 class RobotEars:
-    """The ears daemon (``backend`` unitree, or dry for a scripted robot) heard through ``robot``.
+    """The ears daemon (the unitree backend) heard through ``robot``.
     The same life cycle as :class:`~stuart_bt.mission.listening.Listener`: ``start``, ``done``
     when the sound ends, ``error`` when it failed, ``close`` (the daemon is always reaped)."""
 
     def __init__(self, robot: MissionExecutor, spec: str, options: dict[str, Any] | None = None,
-                 backend: str = "unitree", handshake_timeout: float = 30.0) -> None:
+                 handshake_timeout: float = 30.0) -> None:
         self.robot = robot
         self.mode = MODES[spec]
         self.source = f"robot_{self.mode}"
-        options = dict(options or {})
-        if backend == "unitree":
-            options.setdefault("mode", self.mode)
-            if self.mode == "mic":
-                options.setdefault("vocabulary", vocabulary_option(robot.resolver.vocabulary()))
-        self.supervisor = Supervisor(backend, ScaledClock(1.0), robot.events, families=(FAMILY,),
+        options = {"mode": self.mode, **(options or {})}
+        if self.mode == "mic":
+            options.setdefault("vocabulary", robot.resolver.vocabulary().to_dict())
+        self.supervisor = Supervisor("unitree", ScaledClock(1.0), robot.events, families=(FAMILY,),
                                      options={FAMILY: options}, handshake_timeout=handshake_timeout)
         self.voice = RobotVoice(robot.events)
         self.error: str | None = None

@@ -14,7 +14,7 @@ import threading
 from typing import TYPE_CHECKING, Any
 
 from ..hearing.pipeline import is_speech, transcribe
-from ..mission.listening import chosen_reading, hearing_fields, take_heard
+from ..mission.listening import act_on_reading, chosen_reading, hearing_fields
 
 if TYPE_CHECKING:
     import numpy as np
@@ -48,11 +48,12 @@ class BrowserEars:
         with self._lock:
             heard = transcribe(self.recogniser(), samples, self.robot.resolver.vocabulary(), source=SOURCE,
                                ended_at=ended_at)
-        fields = chosen_reading(self.robot, hearing_fields(heard))
+        fields = hearing_fields(heard)
         if not is_speech(heard.transcript):
             self.robot.events.publish("heard", acted=False, reason="no_speech", **fields)
             return {**fields, "kind": "no_speech", "intents": []}
-        command = take_heard(self.robot, heard)
+        fields = chosen_reading(self.robot, fields)
+        command = act_on_reading(self.robot, fields)
         if command is None:
             return {**fields, "kind": "dropped", "intents": []}
         return {**fields, "kind": command.kind, "intents": [i.to_dict() for i in command.intents]}
