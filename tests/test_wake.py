@@ -66,7 +66,7 @@ def test_a_bare_name_wakes_only_with_a_pause_after_it(wake: WakeFilter) -> None:
 
 
 @pytest.mark.parametrize("utterance", ["case Stuart, stop", "hate Stewart, go to the kitchen", "pay Stuart: wave",
-                                       "um, K Stuart, turn left"])
+                                       "um, day Stuart, turn left"])
 def test_a_misheard_greeting_wakes_like_a_bare_name_with_a_pause_after_it(wake: WakeFilter, utterance: str) -> None:
     m = wake.match(utterance)
     assert m.woke and m.command and not m.command.startswith((",", ":")), m
@@ -74,8 +74,10 @@ def test_a_misheard_greeting_wakes_like_a_bare_name_with_a_pause_after_it(wake: 
 
 
 @pytest.mark.parametrize("utterance", ["case Stuart go to the kitchen", "thanks Stuart, that was great",
-                                       "I think Stuart, is tired", "the tall Stuart, went home"])
-def test_a_word_before_the_name_without_a_pause_or_a_long_one_does_not_wake(wake: WakeFilter, utterance: str) -> None:
+                                       "I think Stuart, is tired", "the tall Stuart, went home",
+                                       "tell Stuart, go away", "poor Stuart, he is tired",
+                                       "is Stuart, the robot, here?"])
+def test_a_word_before_the_name_without_a_pause_or_unlike_hey_does_not_wake(wake: WakeFilter, utterance: str) -> None:
     assert not wake.match(utterance).woke
 
 

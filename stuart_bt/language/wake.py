@@ -13,8 +13,8 @@ Where the name may stand: at the start of the utterance, after optional filler (
 "hay", "a", "o k"). A name with no greeting wakes only when a pause follows it (a comma or other
 punctuation, or nothing at all: "Stuart, stop!"), so "Stuart Little is a film" does not wake,
 and neither does a name in the middle of a sentence ("I told Stuart to go"). The same holds for
-a name after one short word that is no known greeting: a greeting the recogniser misheard
-("case Stuart, stop").
+a name after one word that is no known greeting but sounds like "hey": a greeting the recogniser
+misheard ("case Stuart, stop"; not "tell Stuart, ...").
 """
 
 from __future__ import annotations
@@ -68,10 +68,13 @@ VOWELS = frozenset("AU")
 VOWEL_INDEL, CONSONANT_INDEL, SUBSTITUTION = 1.0, 0.75, 1.0
 DEFAULT_TOLERANCE = 0.8  # one consonant sound lost or added; tuned on wake.jsonl
 SHORT_NAME_SPELLING = 0.7  # difflib ratio a heard word needs to a short name's spelling
-# A short word no greeting list holds may stand for one before the name ("case Stuart, stop",
-# "hate Stuart, wave": what a recogniser made of "hey" under noise or over the robot's voice),
-# when a pause follows the name, as it must after a bare name.
-MISHEARD_GREETING_CHARS = 5
+# A word no greeting list holds may stand for "hey" before the name when it sounds like it: one
+# consonant sound or two, the "ay" vowel (spelled a, ey or ei), and perhaps the s or t of the name
+# glued on ("pay", "they", "case", "hate", "face": what a recogniser made of "hey Stuart" under
+# noise or over the robot's voice); a pause must follow the name, as after a bare name.
+# "tell Stuart, ...", "poor Stuart, ...", "is Stuart, ..." do not sound like "hey".
+MISHEARD_GREETING_KEY = re.compile(r"[^AU]{0,2}A(?:[ST]A?)?")
+MISHEARD_GREETING_VOWEL = re.compile(r"a|e[yi]")
 MISHEARD_GREETING_COST = 0.5
 
 
@@ -203,7 +206,7 @@ class WakeFilter:
         if span is None and not greeted:
             span = self._fused(toks[i])  # "heystuart": greeting and name run together
             greeted = span is not None
-        if span is None and not greeted and len(toks[i]) <= MISHEARD_GREETING_CHARS:
+        if span is None and not greeted and _sounds_like_hey(toks[i]):
             span = self._name_at(toks, i + 1)  # "case Stuart, stop": a greeting misheard; a pause must follow
             if span is not None:
                 span = (span[0] + 1, span[1] + MISHEARD_GREETING_COST)
@@ -269,6 +272,11 @@ class WakeFilter:
                 if d == 0.0:
                     break  # nothing longer can beat an exact sound match
         return best
+
+
+def _sounds_like_hey(word: str) -> bool:
+    """Could a recogniser have written ``word`` for "hey" (with the name's first sound glued on)?"""
+    return bool(MISHEARD_GREETING_KEY.fullmatch(phonetic_key(word)) and MISHEARD_GREETING_VOWEL.search(word))
 
 
 def _greeting_table(greetings: Iterable[str]) -> dict[str, tuple[tuple[str, ...], ...]]:
