@@ -31,27 +31,28 @@ export class GestureView {
     const data = await getJson("/api/joints");
     this.joints = data.joints;
     this.live = data.live;
+    // start from where the robot's arms are, read before the sliders exist: read after, it would
+    // overwrite a slider the user (or a test) moved in the meantime
+    const now = this.live ? await getJson("/api/pose").catch(() => null) : null;
+    const start = (now && now.joints) || {};
     document.getElementById("g-live").textContent = data.live
       ? "The pose follows the sliders in the simulator."
       : "Recording only: the pose is applied live in a tree server with --backend sim.";
     const groups = new Map();
     for (const joint of this.joints) {
       if (!groups.has(joint.group)) groups.set(joint.group, el("fieldset", {}, el("legend", {}, joint.group)));
-      const input = el("input", { type: "range", min: joint.lower, max: joint.upper, step: 0.01, value: joint.neutral,
+      const initial = start[joint.name] ?? joint.neutral;
+      const input = el("input", { type: "range", min: joint.lower, max: joint.upper, step: 0.01, value: initial,
         "data-joint": joint.name, "aria-label": joint.name });
       const shown = el("span", { class: "v" });
       input.addEventListener("input", () => { this.values.set(joint.name, Number(input.value)); shown.textContent = deg(input.value); this.scheduleSend(); });
       this.inputs.set(joint.name, { input, shown });
-      this.values.set(joint.name, joint.neutral);
-      shown.textContent = deg(joint.neutral);
+      this.values.set(joint.name, initial);
+      shown.textContent = deg(initial);
       groups.get(joint.group).append(el("label", { class: "slider", title: `${joint.name}: ${deg(joint.lower)}..${deg(joint.upper)}` },
         el("span", {}, pretty(joint.name)), input, shown));
     }
     document.getElementById("sliders").replaceChildren(...groups.values());
-    if (this.live) { // start from where the robot's arms are
-      const now = await getJson("/api/pose").catch(() => null);
-      if (now) for (const [name, value] of Object.entries(now.joints)) this.setValue(name, value);
-    }
     await this.refreshList();
     this.drawFrames();
   }
