@@ -71,3 +71,10 @@ def test_a_folder_is_read_in_name_order_with_silence_between_files(tmp_path):
 def test_an_unknown_source_name_suggests_the_closest():
     with pytest.raises(AudioError, match=r"no sound source 'mik:0' \(did you mean 'mic'\?\)"):
         open_source("mik:0")
+
+
+def test_an_unknown_source_suggests_and_lists_the_names_its_caller_opens_elsewhere():
+    with pytest.raises(AudioError) as caught:
+        open_source("robto", elsewhere=["robot", "robot:mic", "robot:asr"])
+    message = str(caught.value)
+    assert "(did you mean 'robot'?)" in message and "robot:asr" in message.split("sources are")[1]

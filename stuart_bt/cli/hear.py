@@ -74,7 +74,7 @@ def make_listener(spec: str | None, robot: Any, args: argparse.Namespace, ears_o
     Shared by ``chat``, ``listen`` and ``ros``, so every front end hears the same way."""
     if not spec:
         return None
-    from ..mission.robot_ears import RobotEars, is_robot_source
+    from ..mission.robot_ears import MODES, RobotEars, is_robot_source
 
     if is_robot_source(spec):
         return RobotEars(robot, spec, ears_options)
@@ -82,7 +82,7 @@ def make_listener(spec: str | None, robot: Any, args: argparse.Namespace, ears_o
     from ..mission.listening import Listener
 
     recogniser = make_recogniser(args)
-    return Listener(robot, open_source(spec, live=True), recogniser, robot.resolver.vocabulary())
+    return Listener(robot, open_source(spec, live=True, elsewhere=list(MODES)), recogniser, robot.resolver.vocabulary())
 
 
 def cmd_hear(args: argparse.Namespace) -> int:

@@ -17,7 +17,7 @@ import socket
 import struct
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO, Protocol
@@ -221,9 +221,11 @@ SOURCES: dict[str, Callable[[str, bool], Source]] = {
 }
 
 
-def open_source(spec: str, live: bool = False) -> Source:
+def open_source(spec: str, live: bool = False, elsewhere: Sequence[str] = ()) -> Source:
     """A source by name: ``file:PATH``, ``mic``, ``mic:DEVICE``, ``-``; a bare path is a file.
-    ``live``: a file plays at the speed it was spoken (for a listening robot)."""
+    ``live``: a file plays at the speed it was spoken (for a listening robot). ``elsewhere``: the
+    names a caller opens itself (the robot's ears run in a daemon), so a misspelt one is suggested
+    and listed too."""
     name, _, arg = spec.partition(":")
     if spec == "-":
         return PcmSource()
@@ -231,8 +233,10 @@ def open_source(spec: str, live: bool = False) -> Source:
         return SOURCES[name](arg, live)
     if Path(spec).exists():
         return FileSource([spec], live)
-    raise AudioError(f"no sound source {spec!r}{did_you_mean(name, list(SOURCES))}; sources are file:PATH, "
-                     f"mic[:DEVICE], - (raw PCM on stdin)")
+    known = [*SOURCES, *elsewhere]
+    listing = ", ".join(["file:PATH", "mic[:DEVICE]", *elsewhere, "- (raw PCM on stdin)"])
+    raise AudioError(f"no sound source {spec!r}{did_you_mean(spec if spec in elsewhere else name, known)}; "
+                     f"sources are {listing}")
 
 
 @dataclass(frozen=True)
