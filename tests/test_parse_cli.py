@@ -19,7 +19,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 MARKERS = REPO / "sim" / "maps" / "lab_markers.json"
-KEYS = {"utterance", "wake", "command", "intents", "conversational"}
+KEYS = {"utterance", "wake", "command", "intents", "conversational", "coverage", "doubt"}
 INTENT_KEYS = {"action", "target", "x", "y", "yaw", "raw_text"}
 
 

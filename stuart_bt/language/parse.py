@@ -2,13 +2,19 @@
 
 This is the contract the CLI prints and other programs script against::
 
-    {"utterance": str, "wake": bool, "command": str, "intents": [TaskIntent...], "conversational": bool}
+    {"utterance": str, "wake": bool, "command": str, "intents": [TaskIntent...], "conversational": bool,
+     "coverage": {"used": [str], "unused": [str], "talk": [str], "unread": str},
+     "doubt": [{"reason": str, "detail": str}]}
 
 - no wake phrase: ``wake`` false, ``command`` "", ``intents`` [], ``conversational`` false (the
   robot was not spoken to, so there is nothing to answer either);
 - wake phrase and no command in what follows: ``conversational`` true (the text goes to the
   conversation side: "Hey Stuart, what can you pick up?");
-- ``command`` is the text after the wake phrase, as written.
+- ``command`` is the text after the wake phrase, as written;
+- ``coverage``: which words of ``command`` the intents came from, which content words no clause
+  used, which were conversation, and any text past the length limit (never read);
+- ``doubt``: why the robot should ask before acting on ``intents`` (:mod:`.doubt`); empty for a
+  clear command, for a stop, and when there are no intents.
 
 Resolution against the map and the object labels is a separate step
 (:mod:`stuart_bt.language.resolve`): a parse never needs a map, and the same parse can be
@@ -22,7 +28,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..core.jsonfile import to_json
-from .grammar import Defaults, Grammar
+from .doubt import Doubt, Limits, doubts
+from .grammar import Coverage, Defaults, Grammar, coverage
 from .intents import TaskIntent
 from .wake import GREETINGS, WakeFilter
 
@@ -36,10 +43,13 @@ class ParseResult:
     command: str = ""
     intents: list[TaskIntent] = field(default_factory=list)
     conversational: bool = False
+    coverage: Coverage = field(default_factory=Coverage)
+    doubt: list[Doubt] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         return {"utterance": self.utterance, "wake": self.wake, "command": self.command,
-                "intents": [i.to_dict() for i in self.intents], "conversational": self.conversational}
+                "intents": [i.to_dict() for i in self.intents], "conversational": self.conversational,
+                "coverage": self.coverage.to_dict(), "doubt": [d.to_dict() for d in self.doubt]}
 
     def to_json(self) -> str:
         return to_json(self.to_dict(), ensure_ascii=False)
@@ -52,22 +62,30 @@ class Parser:
 
     def __init__(self, name: str = "Stuart", greetings: Iterable[str] = GREETINGS, *,
                  wake_filter: WakeFilter | None = None, grammar: Grammar | None = None,
-                 defaults: Defaults | None = None, require_wake: bool = True) -> None:
+                 defaults: Defaults | None = None, require_wake: bool = True, limits: Limits | None = None) -> None:
         self.wake_filter = wake_filter or WakeFilter(name, greetings)
-        vocatives = [w for w in self.wake_filter.name.lower().split() if w]
-        self.grammar = grammar or Grammar(defaults=defaults, vocatives=vocatives)
+        self.vocatives = [w for w in self.wake_filter.name.lower().split() if w]
+        self.grammar = grammar or Grammar(defaults=defaults, vocatives=self.vocatives)
         self.require_wake = require_wake
+        self.limits = limits or Limits()
 
     def parse(self, utterance: str) -> ParseResult:
         """The result for one utterance (never raises on text: any string gives a result)."""
         wake = self.wake_filter.match(utterance)
         if not wake.woke:
             if not self.require_wake:
-                intents = self.grammar.parse(utterance)
-                return ParseResult(utterance, False, utterance.strip(), intents, not intents)
+                return self._command(utterance, False, utterance.strip())
             return ParseResult(utterance)
-        intents = self.grammar.parse(wake.command) if wake.command else []
-        return ParseResult(utterance, True, wake.command, intents, not intents)
+        return self._command(utterance, True, wake.command)
+
+    def _command(self, utterance: str, woke: bool, command: str) -> ParseResult:
+        if not command:
+            return ParseResult(utterance, woke, command, [], woke)
+        reading = self.grammar.read(command)
+        covered = coverage(reading, self.vocatives)
+        intents = reading.intents
+        return ParseResult(utterance, woke, command, intents, not intents, covered,
+                           doubts(intents, covered, self.limits))
 
 
 _DEFAULT: Parser | None = None

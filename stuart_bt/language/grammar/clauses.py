@@ -301,6 +301,8 @@ def _another_target(s: ParseState, i: int, last: str) -> Result:
     words, j = read_noun_phrase(s, i)
     if not words or not may_end(s, j) or any(w in DETERMINERS for w in words[1:]):
         return None  # "... and close the door": a verb and its object, not a second place
+    if s.at(i) in DETERMINERS and s.at(i + 1) in DETERMINERS:
+        return None  # "..., it's a bit gloomy": two determiners in a row open a clause, not a noun
     target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
     if target is None:
         return None

@@ -32,10 +32,22 @@ The grammar reports targets as spoken (lower case, determiners removed): "the ch
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import dataclass
 
 from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
-from .lexicon import ALL_VERBS, BOUNDARY, COPULA, CORRECTIONS_BY_FIRST, HARD_STOPS, MODALS, NP_STOP, PAST, SUBORDINATORS
+from .forms import question_tags, retraction_at
+from .lexicon import (
+    ALL_VERBS,
+    BOUNDARY,
+    COPULA,
+    CORRECTIONS_BY_FIRST,
+    HARD_STOPS,
+    MODALS,
+    NP_STOP,
+    PAST,
+    SUBORDINATORS,
+)
 from .nouns import read_arrival
 from .state import Defaults, ParseState, Spec, may_end, skip_rest
 from .tokens import Tokens, tokenize
@@ -54,23 +66,48 @@ class Grammar:
 
     def parse(self, text: str) -> list[TaskIntent]:
         """The intents in ``text``, in the order they are to be done; [] when it holds no command."""
+        return self.read(text).intents
+
+    def read(self, text: str) -> Reading:
+        """The intents in ``text`` and which words they came from (see :class:`Reading`)."""
         tokens = tokenize(text)
-        out = self.parse_tokens(text, tokens)
-        if not out and "." in tokens.toks:  # "go. to. the kitchen.": a recogniser's stray periods
-            out = self.parse_tokens(text, tokens.without("."))
-        return out
+        reading = self.read_tokens(text, tokens)
+        if not reading.intents and USED not in reading.marks and "." in tokens.toks:
+            reading = self.read_tokens(text, tokens.without("."))  # "go. to. the kitchen.": stray periods
+        if reading.unread and any(i.action == STOP for i in self.read(reading.unread).intents):
+            stop = TaskIntent(STOP, "", 0.0, 0.0, 0.0, "stop")  # a stop wins, however long the utterance
+            return Reading([stop], reading.tokens, reading.marks, reading.unread)
+        return reading
 
     def parse_tokens(self, text: str, tokens: Tokens) -> list[TaskIntent]:
         """Like :meth:`parse` on the tokens :func:`tokenize` made of ``text``."""
-        return _CommandReader(self, text, tokens).read()
+        return self.read_tokens(text, tokens).intents
+
+    def read_tokens(self, text: str, tokens: Tokens) -> Reading:
+        """Like :meth:`read` on the tokens :func:`tokenize` made of ``text``."""
+        reader = _CommandReader(self, text, tokens)
+        intents = reader.read()
+        return Reading(intents, tuple(reader.toks), bytes(reader.marks), tokens.unread())
+
+
+@dataclass(frozen=True)
+class Reading:
+    """A command read: its intents, the tokens, what each token was to the reader (``USED``: an
+    intent came from it; ``TALK``: part of a question or statement; 0: read by no clause) and the
+    text past MAX_TOKENS that was not read at all. The marks are what coverage is made of."""
+
+    intents: list[TaskIntent]
+    tokens: tuple[str, ...] = ()
+    marks: bytes = b""
+    unread: str = ""
 
 
 class _CommandReader:
     """One command read left to right: clauses between connectors, with what the words between
     them ask for (a correction, a reordering, a clause held until the next one is in)."""
 
-    __slots__ = ("clause_end", "correct_at", "dead", "held", "hold", "i", "out", "reorder_at", "s", "text", "tokens",
-                 "toks")
+    __slots__ = ("after_subordinate", "clause_end", "conditional", "correct_at", "dead", "held", "hold", "i", "marks",
+                 "out", "reorder_at", "retract_at", "s", "tagged", "text", "tokens", "toks")
 
     def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
         self.text, self.tokens = text, tokens
@@ -85,16 +122,28 @@ class _CommandReader:
         self.clause_end = -1  # where the last clause ended: "X after you Y" has no connector between
         self.hold = False  # "before you Y, X": Y's intents wait ...
         self.held: list[TaskIntent] = []  # ... here until X's are in
+        self.marks = bytearray(len(self.toks))  # per token: USED, TALK, or 0 (read by no clause)
+        self.tagged = question_tags(self.toks)  # sentences that end in a question tag: talk
+        self.retract_at: int | None = None  # "go to the kitchen, no.": a correction nothing replaced takes back
+        self.conditional = False  # an "if" clause came before a command: the robot cannot check it
+        self.after_subordinate = False  # the clause before was "when you get there": a stop after it is a step
 
     def read(self) -> list[TaskIntent]:
+        """The intents, in order; ``marks`` then says which tokens they came from."""
         n = self.s.n
         while self.i < n:
+            if self.tagged[self.i]:
+                self.marks[self.i] = TALK
+                self.i += 1
+                continue
             if self._between_clauses() or self._in_conversation():
                 continue
             opening = self._subordinate_opening()
             if opening is None:
                 break
             self._clause(*opening)
+        if self.retract_at is not None:
+            del self.out[self.retract_at:]
         return _dedupe_stops(self.out + self.held)
 
     def _between_clauses(self) -> bool:
@@ -104,10 +153,24 @@ class _CommandReader:
             self.dead = False
             self.i += 1
             return True
+        if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self.i + 1 < s.n and (
+                retraction_at(s, self.i + 1) or s.phrase_at(self.i + 1, CORRECTIONS_BY_FIRST)):
+            self._mark(self.i, self.i + 1, USED)  # "actually, scratch that": the word before a correction
+            self.i += 1
+            return True
+        taken_back = retraction_at(s, self.i) if (self.out or self.held) and not self.dead else 0
+        if taken_back:  # "go to the kitchen, just kidding": nothing asked before it stands
+            self._forget_all()
+            self._mark(self.i, self.i + taken_back, USED)
+            self.i += taken_back
+            return True
         c = s.phrase_at(self.i, CORRECTIONS_BY_FIRST) if self.out and not self.dead else None
         if c:
             self.correct_at = len(self.out) - _last_clause_len(self.out)  # "go to the kitchen, no, the bathroom"
+            self._mark(self.i, self.i + len(c), USED)
             self.i += len(c)
+            if c in RETRACTING and (self.i >= s.n or toks[self.i] in BOUNDARY):
+                self.retract_at = self.correct_at  # "no." alone: unless a clause replaces it, it takes back
             return True
         con = read_connector(s, self.i)
         if con is None:
@@ -120,16 +183,25 @@ class _CommandReader:
             self.reorder_at = len(self.out) - _last_clause_len(self.out)
         return True
 
+    def _forget_all(self) -> None:
+        self.s.last_action = ""  # nothing for an ellipsis to continue ("..., I'm joking, obviously")
+        self.out.clear()
+        self.held.clear()
+        self.correct_at = self.reorder_at = self.retract_at = None
+        self.hold = False
+
     def _in_conversation(self) -> bool:
         """Inside a question or a statement: skip its words (a word said to the robot after a
         comma ends it: "I lost my keys, can you help me find them?", "that's enough, stop")."""
         if not self.dead:
             return False
         s, i, t = self.s, self.i, self.toks[self.i]
+        k = i + 1 if t in ("just", "please", "now", "so") else i  # "..., you know what, just stop"
         if self.toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
-                t in ("stop", "halt", "freeze") and may_end(s, i + 1))):
+                s.at(k) in ("stop", "halt", "freeze") and may_end(s, k + 1))):
             self.dead = False
             return False
+        self.marks[i] = TALK
         self.i += 1
         return True
 
@@ -148,6 +220,8 @@ class _CommandReader:
                 "you", "youve", "youre", "u"):
             self.i += 2
             t = "once"  # "as soon as you get to the kitchen": like "once you ..."
+        if t == "if" and s.at(self.i + 1) == "you" and s.at(self.i + 2) in MODALS:
+            return t, False  # "if you could go to the kitchen": a polite request, no condition
         if not (t in SUBORDINATORS and self.i + 1 < n and (toks[self.i + 1] in ("you", "youve", "youre", "u") or (
                 t == "after" and toks[self.i + 1] in ALL_VERBS))):
             return t, False
@@ -169,7 +243,17 @@ class _CommandReader:
     def _clause(self, t: str, subordinate: bool) -> None:
         """Read the clause at ``i`` and put its intents where the words around it say."""
         s, start = self.s, self.i
-        got = read_arrival(s, start) if subordinate and t != "if" else None
+        if subordinate and t == "if":  # "if you go to the kitchen ...": a condition, never a command itself
+            self.conditional = True
+            self._no_clause(t, False)
+            self._mark(start, self.i, TALK)
+            return
+        if not subordinate and start in self.tokens.gerunds and self._opens_sentence(start):
+            self.dead = True  # "walking to the kitchen takes ages": the ing-form is the subject of a statement
+            self._no_clause(t, False)
+            self._mark(start, self.i, TALK)
+            return
+        got = read_arrival(s, start) if subordinate else None
         if got is None:
             s.subordinate = subordinate
             got = read_clause(s, start)
@@ -180,22 +264,45 @@ class _CommandReader:
         specs, j = got
         j = max(j, start + 1)
         if not specs:  # "grab the cup and hand it to me": the handing over adds nothing
+            self._mark(start, j, USED)
             s.first = False
             self.i = self.clause_end = skip_rest(s, j)
             return
         if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
             self.dead, self.correct_at, self.reorder_at, self.hold = True, None, None, False
+            self._mark(start, j, TALK)
             self.i = j
             return
         if subordinate and self.out and [(it.action, it.target) for it in self.out[-len(specs):]] == [
                 (a, tg) for a, tg, *_ in specs]:
+            self._mark(start, j, USED)
             s.first = False
             self.i = skip_rest(s, j)
             return
+        if not subordinate and all(sp[0] == STOP for sp in specs) and self._interjected(start):
+            self._forget_all()  # "..., oh no, stop!": a stop said over a plan cancels all of it
+        self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
+        self._mark(start, j, USED)
         self._remember(specs)
         self.i = self.clause_end = skip_rest(s, j)
+        if specs[-1][1] and s.at(j) in QUALIFIERS and not any(w in TIMES for w in self.toks[j:self.i]):
+            self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step ("in an hour" is)
+
+    def _opens_sentence(self, i: int) -> bool:
+        """Whether ``i`` starts a sentence: the start, after . ! ? ;, or after a comma before any command."""
+        before = self.toks[i - 1] if i else "."
+        return before in HARD_STOPS or (before == "," and not self.out and not self.held)
+
+    def _interjected(self, i: int) -> bool:
+        """Whether the clause at ``i`` interrupts what was asked before it rather than follows it:
+        it comes after a pause or a correction, not after "then" or "and", nor after "when you get
+        there" (a stop is then where to stop)."""
+        if not (self.out or self.held) or self.after_subordinate:
+            return False
+        before = self.toks[i - 1] if i else ""
+        return before not in SEQUENCERS
 
     def _no_clause(self, t: str, subordinate: bool) -> None:
         """No command at ``i``: skip to the next connector; a question or a statement makes the
@@ -207,12 +314,24 @@ class _CommandReader:
             self.i = skip_rest(s, self.i + 1)
             s.first = False
             return
-        if opens_conversation(s, self.i) and not read_topic(s, self.i):
+        start = self.i
+        opens = opens_conversation(s, start)
+        topic = opens and read_topic(s, start)
+        if opens and not topic:
             self.dead = True
         self.i += 1
         while self.i < s.n and toks[self.i] not in BOUNDARY:
             self.i += 1
+        if self.dead:
+            self._mark(start, self.i, TALK)
+        elif topic:  # "the kitchen, go there": what "there" will mean
+            self._mark(start, self.i, USED)
         s.first = False
+
+    def _mark(self, start: int, end: int, how: int) -> None:
+        marks = self.marks
+        for k in range(start, min(end, len(marks))):
+            marks[k] = how
 
     def _place(self, made: list[TaskIntent]) -> None:
         """Held back, replacing a corrected clause, before a reordered one, or at the end."""
@@ -226,6 +345,7 @@ class _CommandReader:
             self.reorder_at = None
         else:
             self.out.extend(made)
+        self.retract_at = None
         if self.held and made is not self.held:
             self.out.extend(self.held)
             self.held = []
@@ -240,6 +360,28 @@ class _CommandReader:
                 s.last_place = tg
         s.last_action = specs[-1][0]
         s.first = False
+
+
+# prepositions that start a phrase saying which thing or place is meant ("the cup on the table",
+# "a bottle of water", "the kitchen by the door"), when they follow a target
+QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
+                        "inside", "over", "underneath", "above", "below", "opposite"})
+
+# words said before a correction or a retraction ("actually, scratch that", "oh no, stop")
+INTERJECTIONS = frozenset({"actually", "oh", "ah", "well", "hmm", "ok", "so", "hang", "on", "hold"})
+
+# words after which a stop is the next step of the plan ("... and then stop"), not an interruption
+SEQUENCERS = frozenset({"then", "and", "afterwards", "afterward", "next", "finally", "lastly", "by", "that", "this"})
+
+# corrections that, said alone with nothing to replace what they correct, take it back ("go there, no.")
+RETRACTING = frozenset({("no",), ("no", "wait"), ("wait", "no"), ("scratch", "that"), ("not", "that"),
+                        ("my", "mistake"), ("my", "bad")})
+
+# words of time: the robot acts now, so "in twenty minutes" or "later" is never filler
+TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",
+                   "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day"})
+
+USED, TALK = 1, 2  # what a token was to the reader: words a command came from, words of conversation
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

@@ -91,7 +91,8 @@ SUBJECTS = frozenset({"i", "im", "ive", "id", "ill", "we", "were", "weve", "wed"
                       "shes", "it", "its", "they", "theyre", "theyve", "this", "that", "thats", "there",
                       "theres", "here", "heres", "the", "my", "our", "his", "her", "their", "these", "those",
                       "youre", "youve", "youd", "youll", "everyone", "everybody", "nobody", "someone",
-                      "somebody", "people", "mine", "yours", "a", "an", "one", "not", "probably", "if",
+                      "somebody", "people", "mine", "yours", "a", "an", "one", "not", "probably", "if", "thatd",
+                      "thatll", "itd", "itll", "theyd", "theyll", "thered", "therell",
                       "because", "although", "though", "unless", "said"})
 
 
@@ -122,7 +123,8 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("now",), ("ok",), ("so",), ("well",), ("yes",), ("yeah",), ("also",),
     ("hey",), ("quickly",), ("quick",), ("right", "now"), ("maybe",), ("perhaps",), ("actually",), ("oh",),
     ("go", "ahead", "and"), ("lets",), ("let", "us"), ("let", "me", "see", "you"),
-    ("i", "want", "you", "to"), ("i", "need", "you", "to"), ("i", "would", "like", "you", "to"),
+    ("i", "want", "you", "to"), ("i", "need", "you", "to"), ("if", "you", "could"), ("if", "you", "would"),
+    ("if", "you", "can"), ("if", "you", "will"), ("i", "would", "like", "you", "to"),
     ("id", "like", "you", "to"), ("i", "would", "love", "you", "to"), ("id", "love", "you", "to"),
     ("i", "would", "love", "it", "if", "you", "could"), ("id", "love", "it", "if", "you", "could"),
     ("id", "like", "for", "you", "to"), ("i", "ask", "you", "to"), ("im", "asking", "you", "to"),
@@ -442,3 +444,26 @@ GESTURE_VERB_NAMES: dict[str, str] = {"wave": "wave", "greet": "wave", "clap": "
 GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out", "ready", "closer", "away", "lost",
                             "along", "on", "off", "in", "inside", "started", "here", "over", "there", "a", "an", "rid",
                             "it", "real", "better", "well", "some", "dressed", "to", "back", "home"})
+
+# Taking back what was just said: everything asked before it in the utterance is dropped
+# ("go to the kitchen, just kidding"; "walk to the kitchen and ..., I'm joking").
+RETRACTIONS: tuple[tuple[str, ...], ...] = (
+    ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("i", "am", "kidding"),
+    ("just", "joking"), ("only", "joking"), ("joking",), ("im", "joking"), ("i", "am", "joking"), ("jk",),
+    ("forget", "it"), ("forget", "that"), ("forget", "everything"), ("forget", "all", "that"), ("cancel", "that"),
+    ("on", "second", "thought"), ("on", "second", "thoughts"), ("dont", "bother"), ("nah",), ("no", "dont"),
+    ("i", "take", "that", "back"), ("belay", "that"), ("as", "you", "were"), ("dont",), ("do", "not"),
+)
+
+RETRACTIONS_BY_FIRST = by_first(sorted(RETRACTIONS, key=lambda r: (-len(r), r)))
+
+# A question tag turns the sentence before it into a question ("..., right?", "..., wouldn't it?"):
+# one of these words alone, or an auxiliary and a pronoun. "..., will you?" after a command is a
+# request, not a question (see forms.question_tag).
+TAG_WORDS = frozenset({"right", "correct", "yeah", "innit", "eh", "true", "yes", "no", "huh", "surely"})
+TAG_PRONOUNS = frozenset({"it", "that", "they", "he", "she", "we", "i", "there", "you", "this"})
+TAG_AUX = frozenset({"is", "isnt", "are", "arent", "was", "wasnt", "were", "werent", "do", "dont", "does",
+                     "doesnt", "did", "didnt", "have", "havent", "has", "hasnt", "had", "hadnt", "will", "wont",
+                     "would", "wouldnt", "can", "cant", "could", "couldnt", "should", "shouldnt", "shall", "am",
+                     "aint", "might", "must"})
+REQUEST_TAGS = frozenset({"will", "wont", "would", "can", "could"})  # "..., will you?" after a command asks

@@ -18,7 +18,9 @@ from .lexicon import (
     STRONG_VERBS,
     SURFACES,
     TO_WORDS,
+    TRAILING,
     VERB_PARTICLES,
+    WH,
 )
 from .state import ParseState, Result
 
@@ -67,6 +69,17 @@ def _no_noun(words: list[str]) -> bool:
         len(words) == 2 and words[0] in ALL_VERBS and words[1] in OBJECT_PRONOUNS)
 
 
+def not_a_target(words: list[str]) -> bool:
+    """Words that cannot name a thing or a place, whatever they follow: a clause ("whatever Dave
+    left"), a verb and its pronoun ("juggle it"), only filler ("mate", "buddy"), or a way of
+    moving ("the bathroom backwards"). Leftover words never become targets."""
+    return (words[0] in WH or words[-1] in ("it", "them") or all(w in TRAILING for w in words)
+            or words[-1] in MANNER)
+
+
+MANNER = frozenset({"backwards", "backward", "forwards", "sideways", "slowly", "quickly", "carefully"})
+
+
 def read_object(s: ParseState, words: list[str]) -> str | None:
     """The spoken object of a pick or find, with "it"/"them"/"that one" meaning the last object
     named in this command; ``None`` when nothing usable was said."""
@@ -81,7 +94,7 @@ def read_object(s: ParseState, words: list[str]) -> str | None:
         return None
     if all(word_value(w) is not None for w in words):
         return None  # "take five": a number is no object
-    return text
+    return None if not_a_target(words) else text
 
 
 def read_place(s: ParseState, words: list[str]) -> str | None:
@@ -98,7 +111,7 @@ def read_place(s: ParseState, words: list[str]) -> str | None:
     if (text in GENERIC or text in NP_BLOCK or text in OBJECT_PRONOUNS or words[0] in ("not", "no") or text == "here"
             or _no_noun(words) or words[-1] in OBJECT_PRONOUNS):
         return None  # ... and "(sorry) to bother you": a verb and its object, no place
-    return text
+    return None if not_a_target(words) else text
 
 
 def numbered_place(place: str) -> tuple[str, float] | None:

@@ -19,10 +19,13 @@ _SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS))
 class Tokens:
     """The tokens of a text and, computed only when asked (for ``raw_text``), their spans."""
 
-    __slots__ = ("_low", "_offsets", "_raw", "_src", "toks")
+    __slots__ = ("_low", "_offsets", "_raw", "_src", "gerunds", "read_to", "toks")
 
-    def __init__(self, toks: list[str], src: list[int], raw: list[str], low: str) -> None:
+    def __init__(self, toks: list[str], src: list[int], raw: list[str], low: str, read_to: int | None = None,
+                 gerunds: frozenset[int] = frozenset()) -> None:
         self.toks = toks
+        self.gerunds = gerunds  # tokens that were said as ing-forms ("walking" -> "walk"): a subject, maybe
+        self.read_to = len(raw) if read_to is None else read_to  # pieces read: fewer when MAX_TOKENS cut the text
         self._src = src  # token index -> index of the whitespace-separated piece it came from
         self._raw = raw
         self._low = low
@@ -31,7 +34,18 @@ class Tokens:
     def without(self, token: str) -> Tokens:
         """The same tokens with every ``token`` left out."""
         keep = [k for k, t in enumerate(self.toks) if t != token]
-        return Tokens([self.toks[k] for k in keep], [self._src[k] for k in keep], self._raw, self._low)
+        gerunds = frozenset(new for new, old in enumerate(keep) if old in self.gerunds)
+        return Tokens([self.toks[k] for k in keep], [self._src[k] for k in keep], self._raw, self._low, self.read_to,
+                      gerunds)
+
+    @property
+    def truncated(self) -> bool:
+        """Whether the text was longer than MAX_TOKENS and its end was not read."""
+        return self.read_to < len(self._raw)
+
+    def unread(self) -> str:
+        """The text after the last piece read (empty unless ``truncated``)."""
+        return " ".join(self._raw[self.read_to:])
 
     def span(self, first: int, last: int) -> tuple[int, int]:
         """Character span in the text from token ``first`` to token ``last`` (inclusive)."""
@@ -71,6 +85,7 @@ def tokenize(text: str) -> Tokens:
         pieces = low.translate(_SEPARATE).split()
     toks: list[str] = []
     src: list[int] = []
+    gerunds: list[int] = []
     last = ""
     special = _SPECIAL
     for k, t in enumerate(pieces):
@@ -99,11 +114,12 @@ def tokenize(text: str) -> Tokens:
                 continue
             elif t in GERUNDS:
                 t = GERUNDS[t]
+                gerunds.append(len(toks))
         toks.append(t)
         src.append(k)
         last = t
         if len(toks) >= MAX_TOKENS:
-            break
-    return Tokens(toks, src, pieces, low)
+            return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds))
+    return Tokens(toks, src, pieces, low, None, frozenset(gerunds))
 
 _KEEP_POINTS = str.maketrans({c: " " for c in "\"()[]{}<>*+=/|~^`@#$%:_-–—‐‑“”„«»…•·\t\n\r"})

@@ -1,0 +1,54 @@
+"""The form of a sentence, where words alone would mislead: a question tag at its end ("you can
+walk to the dock on your own, right?") makes it a question; a retraction ("just kidding", "forget
+it") takes back what was asked before it. Both are read before or between clauses, so that a
+sentence with the form of talk never moves the robot, whatever verbs it holds.
+"""
+
+from __future__ import annotations
+
+from .lexicon import BOUNDARY, HARD_STOPS, REQUEST_TAGS, RETRACTIONS_BY_FIRST, TAG_AUX, TAG_PRONOUNS, TAG_WORDS
+from .state import ParseState
+
+
+def question_tags(toks: list[str]) -> bytearray:
+    """Per token: 1 when its sentence ends with a question tag. A tag follows a comma and ends the
+    sentence: a tag word ("right", "correct", "yeah") or an auxiliary and a pronoun ("isn't it",
+    "wouldn't it", "didn't you"). A modal and "you" ("will you", "won't you") is a request when the
+    sentence opens with a command, so it is left to the clause reader."""
+    out = bytearray(len(toks))
+    start = 0
+    for end in range(len(toks) + 1):
+        if end < len(toks) and toks[end] not in HARD_STOPS:
+            continue
+        if _ends_with_tag(toks, start, end, toks[end] if end < len(toks) else ""):
+            out[start:end] = b"\x01" * (end - start)
+        start = end + 1
+    return out
+
+
+def _ends_with_tag(toks: list[str], start: int, end: int, terminator: str) -> bool:
+    """A tag word needs its question mark ("turn left, no, right" is a correction); an auxiliary and
+    a pronoun ("..., wouldn't it") is a tag however it is written."""
+    words = toks[start:end]
+    if len(words) < 3:
+        return False
+    if words[-2] == "," and words[-1] in TAG_WORDS:
+        return terminator == "?"
+    if len(words) >= 4 and words[-3] == "," and words[-2] in TAG_AUX and words[-1] in TAG_PRONOUNS:
+        return not (words[-2] in REQUEST_TAGS and words[-1] == "you")
+    # "..., is it not?"
+    return len(words) >= 5 and words[-4] == "," and words[-3] in TAG_AUX and words[-2:] == ["not", words[-1]] and (
+        words[-1] in TAG_PRONOUNS)
+
+
+def retraction_at(s: ParseState, i: int) -> int:
+    """The length of a retraction at ``i`` ("just kidding", "forget it", "don't."), or 0. A lone
+    "don't"/"do not" takes back only when nothing follows it in the clause ("no, don't."): before a
+    verb it is a negated command, read elsewhere."""
+    phrase = s.phrase_at(i, RETRACTIONS_BY_FIRST)
+    if phrase is None:
+        return 0
+    after = s.at(i + len(phrase))
+    if phrase in (("dont",), ("do", "not"), ("nah",), ("kidding",), ("joking",)) and after and after not in BOUNDARY:
+        return 0
+    return len(phrase)
