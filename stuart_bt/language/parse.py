@@ -81,11 +81,15 @@ class Parser:
     def _command(self, utterance: str, woke: bool, command: str) -> ParseResult:
         if not command:
             return ParseResult(utterance, woke, command, [], woke)
+        read = self.read_command(command)
+        return ParseResult(utterance, woke, command, read.intents, not read.intents, read.coverage, read.doubt)
+
+    def read_command(self, command: str) -> ParseResult:
+        """The grammar on command text alone (no wake filter): intents, coverage and doubt."""
         reading = self.grammar.read(command)
         covered = coverage(reading, self.vocatives)
-        intents = reading.intents
-        return ParseResult(utterance, woke, command, intents, not intents, covered,
-                           doubts(intents, covered, self.limits))
+        return ParseResult(command, False, command, reading.intents, not reading.intents, covered,
+                           doubts(reading.intents, covered, self.limits))
 
 
 _DEFAULT: Parser | None = None

@@ -8,7 +8,9 @@ words *about* the mission, which the grammar treats as conversation or drops:
   "cancel that and ..." / "forget that, ..." / "never mind, ..." replace the current mission;
 - **continue**: "continue", "resume", "carry on", "keep going", "go on" resume a halted mission;
 - **replace**: a command that says "instead" replaces the current mission instead of queueing;
-- a ``stop`` later in a compound ("turn left and then stop") stays a task of the domain.
+- a ``stop`` later in a compound ("turn left and then stop") stays a task of the domain;
+- **doubt** (``ParseResult.doubt``: unused words, an amount it cannot do) makes tasks a question
+  the robot asks first ("Did you mean: ...?", :meth:`~.proposals.Offers.ask`); a stop never waits.
 
 Utterances without the wake phrase are ignored (unless the parser does not require it); woken
 utterances without a command are conversation.
@@ -57,8 +59,10 @@ def interpret(parser: Parser, utterance: str, woken: bool = False) -> Command:
         return Command(IGNORE, ParseResult(utterance))
     text = (wake.command if wake.woke else utterance).strip()
     stripped, instead = _strip_instead(text)
-    intents = parser.grammar.parse(stripped) if stripped else []
-    result = ParseResult(utterance, wake.woke, text, intents, not intents)
+    read = parser.read_command(stripped) if stripped else None
+    intents = read.intents if read is not None else []
+    result = ParseResult(utterance, wake.woke, text, intents, not intents,
+                         *((read.coverage, read.doubt) if read is not None else ()))
     if intents and intents[0].action == "stop":
         rest = [i for i in intents[1:] if i.action != "stop"]
         return Command(STOP, result, rest, replace=bool(rest))

@@ -103,7 +103,7 @@ class MissionExecutor:
             seed=self.options.seed, history=SESSION_HISTORY))
         self.jobs = JobQueue(self.session.events)
         self.offers = Offers(self.jobs, conversation, self.lab, self.options.propose_tasks,
-                             partial(resolve, self.resolver, self.domain), self._accept)
+                             partial(resolve, self.resolver, self.domain), self._accept, self.parser.grammar.parse)
         self.replies = Replies(self.jobs, self.session, conversation, self.offers.offer, self._run_tree)
         self.runner = TreeRunner(self.session, self.jobs, aside=self.replies.say_aside)
         self.replanner = Replanner(self.domain, self.session.blackboard, markers)
@@ -199,7 +199,9 @@ class MissionExecutor:
             self.jobs.continue_()
         elif command.kind == CONVERSATION:
             self.replies.converse(command.text)
-        if command.intents:
+        if command.intents and command.parse.doubt:  # a stop in it has already stopped the robot
+            self.offers.ask(utterance, command.intents, [d.detail for d in command.parse.doubt])
+        elif command.intents:
             self._accept(utterance, command.intents, replace=command.replace)
         return command
 

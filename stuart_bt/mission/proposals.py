@@ -119,6 +119,22 @@ def describe(intents: Sequence[TaskIntent]) -> str:
         for i in intents)
 
 
+_NO_BUT = re.compile(r"^\W*(?:no|nope|not)\W+(?:i meant\W+|i mean\W+)?(?P<rest>\w.*)$", re.IGNORECASE)
+VERBS = {"navigate_to_marker": "go to", "pick_up": "pick up", "find": "find"}
+
+
+def _instead_of(text: str, offered: list[TaskIntent],
+                reread: Callable[[str], list[TaskIntent]]) -> list[TaskIntent] | None:
+    """The answer "no, the bathroom" to "Did you mean: go to the kitchen?": the offer's one
+    targeted request, with the target said instead; None for any other answer."""
+    m = _NO_BUT.match(text)
+    targeted = [i for i in offered if i.action in VERBS]
+    if not m or len(targeted) != 1:
+        return None
+    again = reread(f"{VERBS[targeted[0].action]} {m.group('rest')}")
+    return again if len(again) == 1 and again[0].action == targeted[0].action else None
+
+
 @dataclass(eq=False)
 class Offers:
     """The proposal offered and waiting for a yes (guarded by the job queue's condition, like the
@@ -131,6 +147,7 @@ class Offers:
     enabled: bool
     resolve: Callable[[list[TaskIntent]], tuple[list[TaskIntent], Any, list[str]]]
     accept: Callable[[str, list[TaskIntent], bool], None]
+    reread: Callable[[str], list[TaskIntent]] = lambda text: []  # the grammar, for "no, the bathroom"
     _pending: tuple[str, list[TaskIntent]] | None = field(default=None, init=False)  # (request, intents) awaiting a yes
 
     def offer(self, text: str) -> bool:
@@ -158,6 +175,21 @@ class Offers:
         events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked])
         return True
 
+    def ask(self, text: str, intents: list[TaskIntent], reasons: Sequence[str]) -> None:
+        """A command in doubt (:mod:`stuart_bt.language.doubt`): ask before acting. What it would
+        do is checked as for any command first: a place it does not know is said, not asked."""
+        checked, _, unknown = self.resolve(intents)
+        if unknown:
+            self.jobs.say_first(Say(" ".join(unknown), "unknown"))
+            return
+        question = f"Did you mean: {describe(checked)}? Say yes or no."
+        with self.jobs.cond:
+            self._pending = (text, checked)
+            self.jobs.queue.appendleft(Say(question, "proposal"))
+            self.jobs.cond.notify_all()
+        self.jobs.events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked],
+                                 doubt=list(reasons))
+
     def answer(self, command: Command) -> bool:
         """A yes runs the offered proposal, a no drops it (no wake phrase needed for either: the
         robot just asked); anything else drops it and is handled as usual."""
@@ -174,6 +206,11 @@ class Offers:
         if NO.match(text or ""):
             events.publish("proposal", phase="declined", to=pending[0])
             self.jobs.say_first(Say("OK, I won't.", "proposal"))
+            return True
+        instead = _instead_of(text or "", pending[1], self.reread)
+        if instead:  # "no, the bathroom": the same request with the named target
+            events.publish("proposal", phase="corrected", to=pending[0], intents=[i.to_dict() for i in instead])
+            self.accept(pending[0], instead, False)
             return True
         events.publish("proposal", phase="dropped", to=pending[0])
         return False

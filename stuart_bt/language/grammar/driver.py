@@ -379,7 +379,8 @@ RETRACTING = frozenset({("no",), ("no", "wait"), ("wait", "no"), ("scratch", "th
 
 # words of time: the robot acts now, so "in twenty minutes" or "later" is never filler
 TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",
-                   "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day"})
+                   "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day", "past", "oclock",
+                   "noon", "midnight", "pm"})
 
 USED, TALK = 1, 2  # what a token was to the reader: words a command came from, words of conversation
 
