@@ -82,7 +82,8 @@ class Parser:
         if not command:
             return ParseResult(utterance, woke, command, [], woke)
         read = self.read_command(command)
-        return ParseResult(utterance, woke, command, read.intents, not read.intents, read.coverage, read.doubt)
+        read.utterance, read.wake = utterance, woke
+        return read
 
     def read_command(self, command: str) -> ParseResult:
         """The grammar on command text alone (no wake filter): intents, coverage and doubt."""

@@ -46,6 +46,7 @@ from .lexicon import (
     MODALS,
     NP_STOP,
     PAST,
+    RETRACTIONS_BY_FIRST,
     SUBORDINATORS,
 )
 from .nouns import read_arrival
@@ -158,7 +159,8 @@ class _CommandReader:
             self._mark(self.i, self.i + 1, USED)  # "actually, scratch that": the word before a correction
             self.i += 1
             return True
-        taken_back = retraction_at(s, self.i) if (self.out or self.held) and not self.dead else 0
+        taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) and (
+            not self.dead) else 0
         if taken_back:  # "go to the kitchen, just kidding": nothing asked before it stands
             self._forget_all()
             self._mark(self.i, self.i + taken_back, USED)
@@ -279,7 +281,7 @@ class _CommandReader:
             s.first = False
             self.i = skip_rest(s, j)
             return
-        if not subordinate and all(sp[0] == STOP for sp in specs) and self._interjected(start):
+        if specs[0][0] == STOP and not subordinate and self._interjected(start) and all(sp[0] == STOP for sp in specs):
             self._forget_all()  # "..., oh no, stop!": a stop said over a plan cancels all of it
         self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
@@ -329,9 +331,9 @@ class _CommandReader:
         s.first = False
 
     def _mark(self, start: int, end: int, how: int) -> None:
-        marks = self.marks
-        for k in range(start, min(end, len(marks))):
-            marks[k] = how
+        end = min(end, len(self.marks))
+        if end > start:
+            self.marks[start:end] = bytes((how,)) * (end - start)
 
     def _place(self, made: list[TaskIntent]) -> None:
         """Held back, replacing a corrected clause, before a reordered one, or at the end."""

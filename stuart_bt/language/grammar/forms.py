@@ -16,6 +16,8 @@ def question_tags(toks: list[str]) -> bytearray:
     "wouldn't it", "didn't you"). A modal and "you" ("will you", "won't you") is a request when the
     sentence opens with a command, so it is left to the clause reader."""
     out = bytearray(len(toks))
+    if "," not in toks:  # every tag follows a comma: most commands have none
+        return out
     start = 0
     for end in range(len(toks) + 1):
         if end < len(toks) and toks[end] not in HARD_STOPS:

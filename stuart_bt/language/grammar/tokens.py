@@ -45,7 +45,7 @@ class Tokens:
 
     def unread(self) -> str:
         """The text after the last piece read (empty unless ``truncated``)."""
-        return " ".join(self._raw[self.read_to:])
+        return " ".join(self._raw[self.read_to:]) if self.read_to < len(self._raw) else ""
 
     def span(self, first: int, last: int) -> tuple[int, int]:
         """Character span in the text from token ``first`` to token ``last`` (inclusive)."""
