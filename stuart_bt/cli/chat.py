@@ -39,6 +39,7 @@ from ..tree.spec import NodeSpec, TreeSpec
 from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
+from .speed import add_speed_argument, speed_for
 
 EXIT_OK, EXIT_FAILED, EXIT_INTERRUPTED = 0, 1, 130
 EOF_WAIT = 600.0  # wall seconds to let the missions asked for finish after the input ends
@@ -284,7 +285,7 @@ def _how_heard(d: dict[str, Any]) -> str:
 def _arguments(p: argparse.ArgumentParser, listening: bool = False) -> None:
     """The chat's options; ``listening`` (``stuart-bt listen``): the sound source is required."""
     p.add_argument("--backend", choices=("dry", "sim"), default="dry", help="skill backend (default dry)")
-    p.add_argument("--speed", type=float, help="dry: clock seconds per wall second (default 1)")
+    add_speed_argument(p, ("dry", "sim"), interactive=True)
     p.add_argument("--no-wake", action="store_true", help="no 'Hey Stuart' needed (a typed console)")
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
     p.add_argument("--max-repairs", type=int, default=2, metavar="N", help="repairs per mission (default 2)")
@@ -301,6 +302,16 @@ def _arguments(p: argparse.ArgumentParser, listening: bool = False) -> None:
     add_llm_arguments(p)
 
 
+def mission_options(args: argparse.Namespace, daemon_options: dict[str, Any]) -> MissionOptions:
+    """The robot a chat (or ``listen``) talks to, from its options: a person is talking, so the
+    simulator runs at real time unless ``--speed`` says otherwise. ``daemon_options`` may hold
+    ``ears`` (the listener's, not a daemon the executor starts)."""
+    return MissionOptions(backend=args.backend, speed=speed_for(args.backend, args.speed, interactive=True),
+                          start=args.start, require_wake=not args.no_wake, max_repairs=args.max_repairs,
+                          conversation=args.llm, conversation_options=llm_options(args), propose_tasks=args.propose,
+                          daemon_options={k: v for k, v in daemon_options.items() if k != "ears"})
+
+
 def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO | None = None) -> int:
     """Run the chat until :quit, end of input or Ctrl-C; daemons are always shut down. With
     ``--hear``, what is heard is said too; when the sound comes on stdin (``-``), or for
@@ -308,12 +319,7 @@ def cmd_chat(args: argparse.Namespace, stdin: TextIO | None = None, out: TextIO 
     stdin, out = stdin or sys.stdin, out or sys.stdout
     try:
         daemon_options = _daemon_options(getattr(args, "daemon_options", None), also=("ears",))
-        options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start,
-                                 require_wake=not args.no_wake, max_repairs=args.max_repairs,
-                                 conversation=args.llm, conversation_options=llm_options(args),
-                                 propose_tasks=args.propose,
-                                 daemon_options={k: v for k, v in daemon_options.items() if k != "ears"})
-        chat = Chat(options, out)
+        chat = Chat(mission_options(args, daemon_options), out)
         listener = make_listener(args.hear, chat.robot, args, daemon_options.get("ears", {}))
     except (StuartError, ValueError, RuntimeError) as e:  # bad options, a missing model file, no microphone
         print(f"stuart-bt: {e}", file=sys.stderr)

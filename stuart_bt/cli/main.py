@@ -19,6 +19,7 @@ from typing import Any
 from .. import __version__
 from ..core.errors import StuartError
 from . import gesture
+from .speed import add_speed_argument
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -242,9 +243,7 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry",
                    help="dry: symbolic, no world (default); sim: MuJoCo; unitree: the robot")
     p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
-    p.add_argument("--speed", type=float, default=None,
-                   help="dry: clock seconds per wall second (default 1); sim: cap on sim seconds per wall "
-                        "second (default 0: as fast as the tree keeps up; 1 with --viewer)")
+    add_speed_argument(p, ("dry", "sim", "unitree"), interactive=False, sim_note="; 1 with --viewer")
     p.add_argument("--seed", type=int, default=0, help="sim: seed that makes a run repeatable")
     p.add_argument("--record", metavar="OUT.mp4|OUT.gif", help="sim: record the chase camera")
     p.add_argument("--map-out", metavar="OUT.png", help="sim: draw the map with the path driven")

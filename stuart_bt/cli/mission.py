@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..mission.executor import MissionExecutor, MissionOptions
+from .speed import add_speed_argument
 
 SPOKEN_CMDS = ("say",)
 
@@ -26,7 +27,7 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
                     "compiler and executor, with repairs. Exit 0 when the last mission succeeds.")
     p.add_argument("utterance", metavar="UTTERANCE", help='e.g. "Hey Stuart, go to the kitchen and wave"')
     p.add_argument("--backend", choices=("dry", "sim"), default="dry", help="skill backend (default dry)")
-    p.add_argument("--speed", type=float, help="dry: clock seconds per wall second (default 1)")
+    add_speed_argument(p, ("dry", "sim"), interactive=False)
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
     p.add_argument("--report", type=Path, metavar="OUT.json", help="write the run report with the missions")
     p.add_argument("--log", type=Path, metavar="OUT.jsonl", help="every event, one JSON object per line")

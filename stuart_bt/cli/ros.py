@@ -15,11 +15,15 @@ import signal
 import sys
 import threading
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
+from .speed import add_speed_argument, speed_for
+
+if TYPE_CHECKING:
+    from ..mission.executor import MissionOptions
 
 EXIT_OK, EXIT_FAILED = 0, 1
 MAX_DOMAIN_ID = 232  # the highest ROS 2 domain id whose DDS ports fit (ROS 2 docs, "domain ID")
@@ -34,7 +38,7 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry", help="skill backend (default dry)")
     p.add_argument("--namespace", default="/", metavar="NS", help="namespace of the node and its topics (default /)")
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
-    p.add_argument("--speed", type=float, help="dry: clock seconds per wall second (default 1)")
+    add_speed_argument(p, ("dry", "sim", "unitree"), interactive=True)
     p.add_argument("--status-rate", type=float, default=10.0, metavar="HZ",
                    help="most /bt/status messages per second (default 10)")
     p.add_argument("--confirm-picks", action="store_true",
@@ -55,16 +59,14 @@ def cmd_ros(args: argparse.Namespace) -> int:
     if problem:
         print(f"stuart-bt: {problem}", file=sys.stderr)
         return EXIT_FAILED
-    from ..mission.executor import MissionExecutor, MissionOptions
+    from ..mission.executor import MissionExecutor
     from ..ros.node import Bridge  # rclpy loads here, and only in this process
 
     daemon_options = _daemon_options(args.daemon_options, also=("ears",))  # a bad file: one line, nothing started
     ears_options = daemon_options.pop("ears", {})
     if args.confirm_picks:
         daemon_options.setdefault("pick", {})["confirm"] = True
-    options = MissionOptions(backend=args.backend, speed=args.speed, start=args.start, log=args.log,
-                             conversation=args.llm, conversation_options=llm_options(args),
-                             daemon_options=daemon_options)
+    options = mission_options(args, daemon_options)
     stop = threading.Event()
     previous = _handlers(stop)
     try:
@@ -96,10 +98,22 @@ def cmd_ros(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def mission_options(args: argparse.Namespace, daemon_options: dict[str, Any]) -> MissionOptions:
+    """The robot behind the bridge, from the command's options: people talk to it over the topics,
+    so the simulator runs at real time unless ``--speed`` says otherwise."""
+    from ..mission.executor import MissionOptions
+
+    return MissionOptions(backend=args.backend, speed=speed_for(args.backend, args.speed, interactive=True),
+                          start=args.start, log=args.log, conversation=args.llm,
+                          conversation_options=llm_options(args), daemon_options=daemon_options)
+
+
 def _check(args: argparse.Namespace) -> str | None:
     """One sentence for the first bad option, else None (nothing has started yet)."""
     if args.status_rate <= 0:
         return "--status-rate must be positive"
+    if args.speed is not None and args.speed < 0:
+        return "--speed must not be negative"
     domain = os.environ.get("ROS_DOMAIN_ID", "").strip()
     if domain and not (domain.isdigit() and int(domain) <= MAX_DOMAIN_ID):
         return f"ROS_DOMAIN_ID must be a whole number from 0 to {MAX_DOMAIN_ID}, not {domain!r}"

@@ -14,6 +14,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from .speed import add_speed_argument, speed_for
+
 EXIT_OK, EXIT_FAILED = 0, 1
 
 
@@ -32,9 +34,7 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
                    help="another name browsers use for this server (e.g. robot.local); requests naming any "
                         "other host are refused (DNS rebinding)")
-    p.add_argument("--speed", type=float, default=None,
-                   help="dry: clock seconds per wall second; sim: cap on sim seconds per wall second "
-                        "(default 1: real time, to watch; 0: as fast as possible)")
+    add_speed_argument(p, ("dry", "sim", "unitree"), interactive=True)
     p.add_argument("--rate", type=float, default=20.0, metavar="HZ", help="tick rate (default 20)")
     p.add_argument("--markers", metavar="FILE", help="marker file the map edits (default: the tree's)")
     p.add_argument("--gestures", metavar="DIR", default="gestures",
@@ -110,7 +110,7 @@ def _robot(args: argparse.Namespace) -> tuple[Any, Any, Path | None, str]:
     from ..web.hub import EventHub
     from .main import UserError, _load
 
-    speed = args.speed if args.speed is not None else (1.0 if args.backend == "sim" else None)
+    speed = speed_for(args.backend, args.speed, interactive=True)
     if args.replay:
         from ..core.events import read_jsonl
 
