@@ -60,3 +60,17 @@ def test_a_new_tree_event_replaces_the_structure():
                                                              "category": "composite", "children": []}}))
     assert snap.running_path() == [] and snap.to_dict()["tree"]["file"] == "b"
     assert not snap.apply(Event(0.3, "status", "a", {"new": "SUCCESS"}))  # a node no longer in the tree
+
+
+def test_the_initial_blackboard_is_in_the_snapshot_and_the_log_before_the_first_tick(tmp_path):
+    spec = load_tree_text("blackboard:\n  visitors: group\n  visits: {kitchen: 0}\n" + TREE, markers_file=lab_markers())
+    log = tmp_path / "run.jsonl"
+    session = Session(spec, RunOptions(backend="dry", speed=20.0, log=log))
+    snap = TreeSnapshot(session.events)  # a view joins after the session was made, as serve's does
+    with session:
+        before = snap.to_dict()
+        assert before["blackboard"] == {"visitors": "group", "visits": {"kitchen": 0}}
+        assert all(n["status"] == "INVALID" for n in before["nodes"])
+    logged = [json.loads(line) for line in log.read_text().splitlines()]
+    written = [(e["key"], e["value"]) for e in logged if e["kind"] == "blackboard"]
+    assert written == [("visitors", "group"), ("visits", {"kitchen": 0})]

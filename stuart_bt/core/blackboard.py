@@ -25,12 +25,17 @@ _MISSING = object()
 
 
 class Blackboard:
+    """``initial``: the tree's starting values. They are set quietly: when a blackboard is made,
+    the log, the views and the bridge are not listening yet, so :meth:`publish_initial` tells them
+    once they are (the session does it when it starts)."""
+
     def __init__(self, events: EventStream | None = None, initial: dict[str, Any] | None = None) -> None:
         self._data: dict[str, Any] = {"world": WorldState()}
         self._events = events
         self._lock = threading.RLock()
+        self._initial = list(initial or {})
         for k, v in (initial or {}).items():
-            self.set(k, v)
+            self._write(k, v)
 
     @property
     def world(self) -> WorldState:
@@ -53,6 +58,20 @@ class Blackboard:
         return True
 
     def set(self, key: str, value: Any) -> None:
+        self._write(key, value)
+        if self._events is not None:
+            self._events.publish("blackboard", key=key, value=value)
+
+    def publish_initial(self) -> None:
+        """Publish each initial key with its value now, as a write, for whoever listens now."""
+        if self._events is None:
+            return
+        for key in self._initial:
+            value = self.get(key, _MISSING)
+            if value is not _MISSING:
+                self._events.publish("blackboard", key=key, value=value)
+
+    def _write(self, key: str, value: Any) -> None:
         with self._lock:
             head, *rest = key.split(".")
             if not rest:
@@ -65,8 +84,6 @@ class Blackboard:
                     target[rest[-1]] = value
                 else:
                     setattr(target, rest[-1], value)
-        if self._events is not None:
-            self._events.publish("blackboard", key=key, value=value)
 
     def keys(self) -> list[str]:
         return list(self._data)

@@ -93,6 +93,7 @@ class Session:
             Path(self.options.log).parent.mkdir(parents=True, exist_ok=True)
             self._log_file = open(self.options.log, "w", encoding="utf-8")  # noqa: SIM115 - the session's life
             self._log_writer = JsonlWriter(self.events, self._log_file)
+        self.blackboard.publish_initial()  # the log and the views listen now: the table starts full
         world = self.blackboard.world
         if self.spec.markers_file:
             world.markers = load_markers(self.spec.markers_file)

@@ -5,11 +5,12 @@
 // only swaps a class on one node, so a tick never redraws the page.
 
 import { el, short } from "./api.js";
+import { BOX_H, BOX_W, layoutTree } from "./layout.js";
 import { runningPath } from "./store.js";
 
 const SVG = "http://www.w3.org/2000/svg";
-const BOX_W = 210, BOX_H = 38, COL = 250, ROW = 48;
 const ICONS = { sequence: "→", selector: "?", parallel: "⇉" };
+const NO_NODE = "Click a node for its parameters, blackboard keys, last result and failure reason.";
 
 function svg(tag, attrs = {}) {
   const node = document.createElementNS(SVG, tag);
@@ -130,7 +131,11 @@ export class TreeView {
     const changedTree = segment !== this.segment;
     this.segment = segment;
     if (segment) this.select.value = this.store.segments.indexOf(segment);
-    if (changedTree) { this.collapsed.clear(); this.selected = null; }
+    if (changedTree) { // another tree: the details of a node of the last one would be about nothing shown
+      this.collapsed.clear();
+      this.selected = null;
+      this.showDetails(null);
+    }
     this.changes = segment ? this.store.changes(segment) : [];
     this.range.max = this.changes.length;
     this.live = segment !== null && segment.end === null;
@@ -221,31 +226,20 @@ export class TreeView {
     const edges = svg("g");
     const boxes = svg("g");
     this.g.append(edges, boxes);
-    let row = 0;
-    const place = (path, depth) => {
-      const node = this.segment.nodes.get(path);
-      const open = !this.collapsed.has(path);
-      let y;
-      if (node.childPaths.length && open) {
-        const ys = node.childPaths.map((c) => place(c, depth + 1));
-        y = (ys[0] + ys[ys.length - 1]) / 2;
-        for (const [i, c] of node.childPaths.entries()) {
-          const edge = svg("path", { class: "edge", d: elbow(depth * COL + BOX_W, y, (depth + 1) * COL, ys[i]) });
-          edges.append(edge);
-          this.elements.set(c, { ...(this.elements.get(c) || {}), edge });
-        }
-      } else {
-        y = row * ROW;
-        row += 1;
-      }
-      const group = this.drawNode(node, depth * COL, y, open);
+    const placed = layoutTree(this.segment.nodes, this.segment.root, (path) => !this.collapsed.has(path));
+    for (const e of placed.edges) {
+      const edge = svg("path", { class: "edge", d: elbow(e.x1, e.y1, e.x2, e.y2) });
+      edges.append(edge);
+      this.elements.set(e.to, { ...(this.elements.get(e.to) || {}), edge });
+    }
+    for (const [path, at] of placed.boxes) {
+      const group = this.drawNode(this.segment.nodes.get(path), at.x, at.y, !this.collapsed.has(path));
       boxes.append(group);
       this.elements.set(path, { ...(this.elements.get(path) || {}), group });
-      return y + BOX_H / 2;
-    };
-    place(this.segment.root, 0);
+    }
     for (const path of this.elements.keys()) this.paintNode(path);
     this.paintPath();
+    if (this.selected) this.markSelected();
     this.applyView();
   }
 
@@ -318,13 +312,17 @@ export class TreeView {
 
   selectNode(path) {
     this.selected = path;
-    for (const [p, parts] of this.elements) if (parts.group) parts.group.classList.toggle("selected", p === path);
+    this.markSelected();
     this.showDetails(path);
+  }
+
+  markSelected() {
+    for (const [p, parts] of this.elements) if (parts.group) parts.group.classList.toggle("selected", p === this.selected);
   }
 
   showDetails(path) {
     const node = this.segment && this.segment.nodes.get(path);
-    if (!node) { this.details.textContent = "Click a node."; return; }
+    if (!node) { this.details.textContent = NO_NODE; return; }
     const last = this.state.last.get(path);
     const history = (this.state.history.get(path) || []).slice(-6);
     const params = Object.entries(node.params || {});
