@@ -14,11 +14,15 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
+from ..conversation.facts import FactAnswers, Situation, checked_reply
+from ..conversation.prompt import load_knowledge
+from ..conversation.reply import Reply
 from .queue import Look, Mission, Say
 from .running import look_tree
 
 if TYPE_CHECKING:
     from ..conversation.reply import Conversation
+    from ..core.world import WorldState
     from ..run.session import Session
     from .queue import JobQueue
 
@@ -37,6 +41,7 @@ class Replies:
         self.offer = offer
         self.run_tree = run_tree
         self._talk = ThreadPoolExecutor(max_workers=1, thread_name_prefix="conversation")
+        self.facts = FactAnswers(getattr(conversation, "knowledge", None) or load_knowledge())
         self._unanswered = 0  # utterances let go while too many replies were pending
         self._last_unanswered_warning = float("-inf")
 
@@ -79,32 +84,44 @@ class Replies:
 
     def answer(self, text: str) -> None:
         """Reply from the world state as it is now (the reply thread; ``pending_replies`` was
-        counted by :meth:`converse`)."""
+        counted by :meth:`converse`): from facts when the robot knows the answer, else from the
+        conversation backend, its reply checked against what the robot knows."""
         from ..perception.context import seen_objects  # no cv2 or numpy: plain world-state reading
 
         jobs = self.jobs
         world = self.session.blackboard.world
         busy = jobs.current is not None and not isinstance(jobs.current, Look)
-        context = {"held": world.held, "at": world.last_marker, "busy": busy,
-                   "detections": seen_objects(world, self.session.clock.now())}
+        seen = seen_objects(world, self.session.clock.now())
+        context = {"held": world.held, "at": world.last_marker, "busy": busy, "detections": seen}
+        situation = situation_now(world, jobs.current if busy else None, [d["label"] for d in seen])
+        known = self.facts.answer(text, situation)
 
         def answer() -> None:
             try:
+                if known is not None:
+                    self._publish_reply(text, Reply(known), "facts")
+                    return
                 if self.offer(text):
                     return
                 reply = self.conversation.reply(text, context)
-                jobs.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text)
-                with jobs.cond:
-                    if isinstance(jobs.current, Mission) and jobs.executor is not None:
-                        jobs.asides.append(reply.text)  # said at the mission's next pause in speech
-                    else:
-                        jobs.queue_reply(Say(reply.text, "reply"))
+                reply = Reply(checked_reply(reply.text, situation), list(reply.gestures))
+                self._publish_reply(text, reply, "model")
             finally:
                 with jobs.cond:
                     jobs.pending_replies -= 1
                     jobs.cond.notify_all()
 
         self._talk.submit(answer)
+
+    def _publish_reply(self, text: str, reply: Reply, source: str) -> None:
+        """Said now, or at a running mission's next pause in speech."""
+        jobs = self.jobs
+        jobs.events.publish("reply", text=reply.text, gestures=list(reply.gestures), to=text, source=source)
+        with jobs.cond:
+            if isinstance(jobs.current, Mission) and jobs.executor is not None:
+                jobs.asides.append(reply.text)  # said at the mission's next pause in speech
+            else:
+                jobs.queue_reply(Say(reply.text, "reply"))
 
     def say_aside(self) -> None:
         """Before a mission tick: a reply that is waiting goes to the speech daemon when the mission
@@ -120,3 +137,28 @@ class Replies:
             text = self.jobs.asides.popleft() if self.jobs.asides else None
         if text is not None:
             tts.request("say", {"text": text}, path="reply")
+
+
+NEAR_PLACE_M = 1.5  # an object this close to a marker is "near the kitchen"
+
+
+def situation_now(world: WorldState, current: Any, seen: list[str]) -> Situation:
+    """What the robot knows about itself, for :class:`~stuart_bt.conversation.facts.FactAnswers`."""
+    places: dict[str, str] = {}
+    for marker in world.markers.values():
+        display = marker.label
+        places[display.lower()] = places[marker.name.replace("_", " ")] = display[:1].lower() + display[1:]
+    at = world.markers[world.last_marker].label if world.last_marker in world.markers else ""
+    objects = {o.label: _where(o.x, o.y, world) for o in world.objects.values()}
+    doing = ""
+    if isinstance(current, Mission):
+        doing = "busy with: " + ", then ".join(current.texts[current.done:] or current.texts)
+    return Situation(at=at[:1].lower() + at[1:], held=world.held or "", doing=doing, seen=seen, places=places,
+                     objects=objects)
+
+
+def _where(x: float, y: float, world: WorldState) -> str:
+    near = min(world.markers.values(), key=lambda m: (m.x - x) ** 2 + (m.y - y) ** 2, default=None)
+    if near is not None and (near.x - x) ** 2 + (near.y - y) ** 2 <= NEAR_PLACE_M ** 2:
+        return f"near the {near.label[:1].lower() + near.label[1:]}"
+    return f"at x {x:.1f}, y {y:.1f} metres on my map"
