@@ -130,7 +130,7 @@ class Offers:
     lab: WorldState  # the places and objects a proposal may name
     enabled: bool
     resolve: Callable[[list[TaskIntent]], tuple[list[TaskIntent], Any, list[str]]]
-    accept: Callable[[str, list[TaskIntent], bool], None]
+    accept: Callable[[str, list[TaskIntent], bool], object]
     _pending: tuple[str, list[TaskIntent]] | None = field(default=None, init=False)  # (request, intents) awaiting a yes
 
     def offer(self, text: str) -> bool:
