@@ -95,11 +95,12 @@ def test_compound_utterance_that_can_all_be_done_succeeds_with_every_step_acknow
 
 def test_second_command_while_busy_is_queued_and_runs_after_the_first():
     with robot() as (mx, trace):
-        mx.submit(KITCHEN)
-        mx.submit("Hey Stuart, go to the bathroom")
+        first = mx.submit(KITCHEN)
+        second = mx.submit("Hey Stuart, go to the bathroom")
         assert mx.wait_idle(30)
 
     assert [m.status for m in mx.missions] == ["succeeded", "succeeded"]
+    assert (first.mission, second.mission) == (1, 2)  # each says which mission it queued (the web's Go follows it)
     first_done = trace.index("mission", id=1, phase="finished")
     second_started = trace.index("mission", id=2, phase="started")
     assert second_started > first_done
@@ -176,11 +177,12 @@ def test_repairs_stop_at_the_cap_and_the_robot_says_why_in_one_sentence():
 
 def test_unknown_place_is_said_and_nothing_moves():
     with robot() as (mx, trace):
-        mx.submit("Hey Stuart, go to the garage")
+        command = mx.submit("Hey Stuart, go to the garage")
         assert mx.wait_idle(30)
 
     assert trace.said()[0].startswith("I don't know where the garage is.")
     assert not trace.motions() and not mx.missions
+    assert command.mission is None and command.refused == trace.said()[0]  # why nothing was queued
 
 
 def test_conversation_gets_a_canned_reply_and_nothing_moves():

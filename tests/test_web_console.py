@@ -50,3 +50,37 @@ def test_an_empty_utterance_is_refused_with_one_sentence(page):
         assert page.locator("#console-log li").count() == 0
         response = page.request.post(served.url + "api/say", data={"text": ""})
         assert response.status == 400 and response.json() == {"error": "type something to say"}
+
+
+def test_a_mission_server_opens_on_the_console(page):
+    with Served("--mission", "--backend", "dry", "--speed", "20") as served:
+        page.goto(served.url)  # no #view in the address
+        page.wait_for_selector("#conn.ok")
+        page.wait_for_selector("#view-console.active")
+        assert page.eval_on_selector("#tabs button.active", "b => b.dataset.view") == "console"
+        assert not page.is_visible("#view-tree")
+        say(page, "Hey Stuart, wave")  # the box to type in is there at once
+        page.wait_for_selector('#queue-table tr[data-mission="1"]', timeout=WAIT)
+
+
+def test_the_node_details_clear_when_a_new_mission_brings_a_new_tree(page):
+    with Served("--mission", "--backend", "dry", "--speed", "20") as served:
+        page.goto(served.url + "#console")
+        page.wait_for_selector("#conn.ok")
+        say(page, "Hey Stuart, wave")
+        page.wait_for_selector('#queue-table tr[data-mission="1"][data-status="succeeded"]', timeout=WAIT)
+        page.click('#tabs button[data-view="tree"]')
+        trees = page.locator("#tree-select option").count()
+        first = page.locator(".node").first
+        path = first.get_attribute("data-path")
+        first.click()
+        assert path in page.text_content("#node-details")
+        assert page.locator(".node.selected").count() == 1
+
+        response = page.request.post(served.url + "api/say", data={"text": "Hey Stuart, go to the kitchen"})
+        assert response.ok
+        page.wait_for_function(f"document.querySelectorAll('#tree-select option').length > {trees}", timeout=WAIT)
+        assert page.input_value("#tree-select") == str(trees)  # the new tree is the one shown
+        assert path not in page.text_content("#node-details")
+        assert page.text_content("#node-details").startswith("Click a node")
+        assert page.locator(".node.selected").count() == 0

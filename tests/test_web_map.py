@@ -104,3 +104,55 @@ def test_a_marker_on_an_obstacle_is_refused_and_nothing_is_written(page, markers
         page.wait_for_selector("#toast.error")
         assert "not free space" in page.text_content("#toast")
     assert markers.read_bytes() == before
+
+
+def test_the_name_column_fits_the_longest_marker_name(page, markers):
+    with Served("trees/greet.yaml", "--paused", "--markers", str(markers)) as served:
+        longest = "wm" * 20  # the widest name the rule allows: 40 characters, the widest letters
+        answer = page.request.post(served.url + "api/markers", data={"op": "add", "name": longest, "x": 2.0, "y": 1.0,
+                                                                     "yaw": 0.0, "display_name": "By the WWW Museum"})
+        assert answer.ok, answer.text()
+        page.goto(served.url + "#map")
+        page.wait_for_selector(f'#marker-table tr[data-marker="{longest}"]')
+        columns = '#marker-table input[aria-label="name"], #marker-table input[aria-label="label"]'
+        cells = page.eval_on_selector_all(columns, "is => is.map(i => [i.value, i.scrollWidth, i.clientWidth])")
+        assert len(cells) == 2 * len(on_disk(markers))
+        clipped = [(text, needs, has) for text, needs, has in cells if needs > has]
+        assert clipped == []
+
+
+def test_a_walk_or_go_that_fails_shows_a_toast_with_the_reason(page, markers, tmp_path):
+    pytest.importorskip("mujoco", reason="only the simulator's planner finds no way there (the sim extra)")
+    tree = tmp_path / "walk.yaml"
+    tree.write_text(f"markers: {markers}\nroot:\n  navigate: kitchen\n")
+    with Served(str(tree), "--paused", "--backend", "sim", "--markers", str(markers)) as served:
+        # free on the map, but closer to the wall than the robot is wide: nowhere to stand
+        answer = page.request.post(served.url + "api/markers", data={
+            "op": "add", "name": "by_the_wall", "x": -1.42, "y": 0.375, "yaw": 0.0})
+        assert answer.ok, answer.text()
+        page.goto(served.url + "#map")
+        page.wait_for_selector('#marker-table tr[data-marker="by_the_wall"]')
+
+        page.check('input[name=map-mode][value=walk]')
+        page.mouse.click(*screen(page, 4.2, 1.5))  # the kitchen table: accepted, then no way there
+        page.wait_for_selector("#toast.error", timeout=WAIT)
+        toast = page.text_content("#toast")
+        assert toast.startswith("walk to (4.20, 1.50) failed: unreachable") and "inside an obstacle" in toast
+        page.wait_for_function("document.body.dataset.busy === 'no'", timeout=WAIT)
+
+        page.locator('#marker-table tr[data-marker="by_the_wall"]').locator("text=Go").click()
+        page.wait_for_function("document.getElementById('toast').textContent.startsWith('go to by_the_wall failed')",
+                               timeout=WAIT)
+        assert "unreachable" in page.text_content("#toast") and page.locator("#toast.error").count() == 1
+        assert page.locator('.node[data-path="go_to"][data-status="FAILURE"]').count() == 1
+
+
+def test_a_go_the_mission_console_cannot_take_shows_what_the_robot_answered(page, markers):
+    with Served("--mission", "--backend", "dry", "--speed", "20", "--markers", str(markers)) as served:
+        answer = page.request.post(served.url + "api/markers", data={
+            "op": "add", "name": "coffee_corner", "x": 2.0, "y": 1.0, "yaw": 0.0})
+        assert answer.ok, answer.text()
+        page.goto(served.url + "#map")
+        page.locator('#marker-table tr[data-marker="coffee_corner"]').locator("text=Go").click()
+        page.wait_for_selector("#toast.error", timeout=WAIT)
+        assert "coffee corner" in page.text_content("#toast")

@@ -45,6 +45,8 @@ class Command:
     parse: ParseResult
     intents: list[TaskIntent] = field(default_factory=list)
     replace: bool = False
+    mission: int | None = None  # the id of the mission MissionExecutor.submit queued for it
+    refused: str | None = None  # why its tasks were not queued: what the robot says instead
 
     @property
     def text(self) -> str:

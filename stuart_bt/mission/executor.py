@@ -200,9 +200,13 @@ class MissionExecutor:
         elif command.kind == CONVERSATION:
             self.replies.converse(command.text)
         if command.intents and command.parse.doubt:  # a stop in it has already stopped the robot
-            self.offers.ask(utterance, command.intents, [d.detail for d in command.parse.doubt])
+            command.refused = self.offers.ask(utterance, command.intents, [d.detail for d in command.parse.doubt])
         elif command.intents:
-            self._accept(utterance, command.intents, replace=command.replace)
+            taken = self._accept(utterance, command.intents, replace=command.replace)
+            if isinstance(taken, Mission):
+                command.mission = taken.id
+            else:
+                command.refused = taken
         return command
 
     def daemon_request(self, family: str, cmd: str, args: dict[str, Any] | None = None) -> bool:
@@ -227,12 +231,14 @@ class MissionExecutor:
             executor.pre_tick.append(send)
             return True
 
-    def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> None:
+    def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> Mission | str:
+        """The mission queued for the intents, or what the robot says instead (an unknown place)."""
         _, calls, unknown = resolve(self.resolver, self.domain, intents)
         if unknown:  # say so; nothing of this command moves the robot
-            self.jobs.say_first(Say(" ".join(unknown), "unknown"))
-            return
-        self.jobs.add(utterance, calls, said(intents), replace)
+            sentence = " ".join(unknown)
+            self.jobs.say_first(Say(sentence, "unknown"))
+            return sentence
+        return self.jobs.add(utterance, calls, said(intents), replace)
 
     # -- the worker's jobs --------------------------------------------------------------------------
     def _run_job(self, job: Job) -> None:

@@ -146,7 +146,7 @@ class Offers:
     lab: WorldState  # the places and objects a proposal may name
     enabled: bool
     resolve: Callable[[list[TaskIntent]], tuple[list[TaskIntent], Any, list[str]]]
-    accept: Callable[[str, list[TaskIntent], bool], None]
+    accept: Callable[[str, list[TaskIntent], bool], object]
     reread: Callable[[str], list[TaskIntent]] = lambda text: []  # the grammar, for "no, the bathroom"
     _pending: tuple[str, list[TaskIntent]] | None = field(default=None, init=False)  # (request, intents) awaiting a yes
 
@@ -175,13 +175,15 @@ class Offers:
         events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked])
         return True
 
-    def ask(self, text: str, intents: list[TaskIntent], reasons: Sequence[str]) -> None:
-        """A command in doubt (:mod:`stuart_bt.language.doubt`): ask before acting. What it would
-        do is checked as for any command first: a place it does not know is said, not asked."""
+    def ask(self, text: str, intents: list[TaskIntent], reasons: Sequence[str]) -> str:
+        """A command in doubt (:mod:`stuart_bt.language.doubt`): ask before acting; returns what
+        the robot says. What it would do is checked as for any command first: a place it does not
+        know is said, not asked."""
         checked, _, unknown = self.resolve(intents)
         if unknown:
-            self.jobs.say_first(Say(" ".join(unknown), "unknown"))
-            return
+            sentence = " ".join(unknown)
+            self.jobs.say_first(Say(sentence, "unknown"))
+            return sentence
         question = f"Did you mean: {describe(checked)}? Say yes or no."
         with self.jobs.cond:
             self._pending = (text, checked)
@@ -189,6 +191,7 @@ class Offers:
             self.jobs.cond.notify_all()
         self.jobs.events.publish("proposal", phase="offered", to=text, intents=[i.to_dict() for i in checked],
                                  doubt=list(reasons))
+        return question
 
     def answer(self, command: Command) -> bool:
         """A yes runs the offered proposal, a no drops it (no wake phrase needed for either: the

@@ -117,16 +117,16 @@ class WebApi:
         body = await _json(request)
         x, y = _number(body, "x"), _number(body, "y")
         yaw = None if body.get("yaw") is None else _number(body, "yaw")
-        await _off_loop(self.need_control().walk, x, y, yaw)
-        return JSONResponse({"ok": True})
+        job = await _off_loop(self.need_control().walk, x, y, yaw)
+        return JSONResponse({"ok": True, **job})
 
     async def goto(self, request: Request) -> Response:
         body = await _json(request)
         marker = body.get("marker")
         if not isinstance(marker, str):
             raise BadRequest("name a marker to go to")
-        await _off_loop(self.need_control().go_to, marker)
-        return JSONResponse({"ok": True})
+        job = await _off_loop(self.need_control().go_to, marker)
+        return JSONResponse({"ok": True, **job})
 
     async def map_info(self, request: Request) -> Response:
         if self.parts.map is None:

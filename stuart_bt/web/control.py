@@ -12,15 +12,17 @@ hub subscribes to it), and a run is stopped with ``Executor.request_stop``.
 
 from __future__ import annotations
 
+import itertools
 import queue
 import threading
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from ..core.errors import StuartError
 from ..core.events import Event, EventStream
 from ..core.world import Marker
+from ..mission.running import failed_leaf, failure_reason
 from ..run.session import RunOptions, Session
 from ..tree.spec import Location, NodeSpec, TreeSpec
 
@@ -32,11 +34,15 @@ class ControlError(StuartError):
     """A command that cannot be done now (busy, not on this backend); the message says why."""
 
 
+_job_ids = itertools.count(1)
+
+
 @dataclass
 class Job:
     spec: TreeSpec
     label: str
     main: bool = False  # the served tree (its top-level progress is what "continue" resumes)
+    id: int = field(default_factory=lambda: next(_job_ids))  # on its run events: the page follows it
 
 
 class TreeControl:
@@ -117,16 +123,18 @@ class TreeControl:
     def say(self, text: str) -> None:
         raise ControlError("the console needs a mission server: stuart-bt serve --mission")
 
-    def walk(self, x: float, y: float, yaw: float | None) -> None:
+    def walk(self, x: float, y: float, yaw: float | None) -> dict[str, Any]:
+        """Walk to a map pose; ``{"run": id}``: the ``run`` events with that id say how it ends."""
         self._need("loco", "walk")
         params: dict[str, Any] = {"x": x, "y": y} | ({"yaw": yaw} if yaw is not None else {})
-        self._submit(Job(_one_leaf("navigate", "walk", params), f"walk to ({x:.2f}, {y:.2f})"))
+        return {"run": self._submit(Job(_one_leaf("navigate", "walk", params), f"walk to ({x:.2f}, {y:.2f})"))}
 
-    def go_to(self, marker: str) -> None:
+    def go_to(self, marker: str) -> dict[str, Any]:
+        """Walk to a marker; ``{"run": id}`` as for :meth:`walk`."""
         self._need("loco", "walk")
         if marker not in self.session.blackboard.world.markers:
             raise ControlError(f"unknown marker {marker!r}")
-        self._submit(Job(_one_leaf("navigate", "go_to", {"marker": marker}), f"go to {marker}"))
+        return {"run": self._submit(Job(_one_leaf("navigate", "go_to", {"marker": marker}), f"go to {marker}"))}
 
     def play_gesture(self, path: Path) -> None:
         self._need("gesture", "play gestures")
@@ -154,12 +162,13 @@ class TreeControl:
         if supervisor is None or family not in supervisor.families:
             raise ControlError(f"cannot {what}: this tree starts no {family} daemon")
 
-    def _submit(self, job: Job) -> None:
+    def _submit(self, job: Job) -> int:
         with self._lock:
             if self._current is not None:
                 raise ControlError(f"busy ({self._current.label}); stop it first")
             self._current = job  # reserved now, so a second click is refused at once
         self._jobs.put(job)
+        return job.id
 
     def _work(self) -> None:
         while not self._closing.is_set():
@@ -187,10 +196,13 @@ class TreeControl:
                 executor.request_stop("shutting down")
         if job.main:
             self._stopped_main = False
-        self.events.publish("run", phase="start", tree=job.spec.file, label=job.label,
+        self.events.publish("run", phase="start", id=job.id, tree=job.spec.file, label=job.label,
                             backend=self.session.options.backend)
         outcome = executor.run(self.session.options.max_duration)
-        self.events.publish("run", phase="end", label=job.label, status=outcome.status, reason=outcome.reason)
+        reason = outcome.reason
+        if outcome.status == "FAILURE":  # why: the reason of the leaf whose failure failed the tree
+            reason = failure_reason(self.session, failed_leaf(executor.root), outcome)
+        self.events.publish("run", phase="end", id=job.id, label=job.label, status=outcome.status, reason=reason)
         if job.main and outcome.status == "STOPPED":
             self._stopped_main = True
 
@@ -260,8 +272,15 @@ class MissionControl:
     def resume(self) -> None:
         self.robot.submit(f"{WAKE}, continue", source="web")
 
-    def go_to(self, marker: str) -> None:
-        self.robot.submit(f"{WAKE}, go to the {marker.replace('_', ' ')}", source="web")
+    def go_to(self, marker: str) -> dict[str, Any]:
+        """Say "go to the MARKER"; ``{"mission": id}``: the ``mission`` events with that id say
+        how it ends. Refused with what the robot answered when it queued no mission for it."""
+        if marker not in self.robot.world.markers:
+            raise ControlError(f"unknown marker {marker!r}")
+        command = self.robot.submit(f"{WAKE}, go to the {marker.replace('_', ' ')}", source="web")
+        if command.mission is None:
+            raise ControlError(command.refused or f"the robot did not take it as somewhere to go ({command.kind})")
+        return {"mission": command.mission}
 
     def walk(self, x: float, y: float, yaw: float | None) -> None:
         raise ControlError("walking to a point needs a tree server (stuart-bt serve TREE); say where to go instead")

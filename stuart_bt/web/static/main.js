@@ -4,14 +4,16 @@
 import { act, connect, getJson, postJson } from "./api.js";
 import { ConsoleView } from "./console.js";
 import { GestureView } from "./gestures.js";
+import { JobWatch } from "./jobs.js";
 import { MapView } from "./map.js";
 import { Store } from "./store.js";
 import { TreeView } from "./tree.js";
 
 const store = new Store();
+const jobs = new JobWatch(store);
 const tree = new TreeView(store);
 const console_ = new ConsoleView(store);
-const map = new MapView(store);
+const map = new MapView(store, jobs);
 const gestures = new GestureView();
 const views = { tree, console: console_, map, gestures };
 window.stuart = { store, ...views }; // for a look from the browser's console (and the browser tests)
@@ -21,10 +23,13 @@ store.on("events", (batch) => {
   tree.onEvents(batch);
   console_.onEvents(batch);
   map.onEvents(batch);
+  jobs.onEvents(batch);
   if (batch.some((e) => e.kind === "run" || e.kind === "mission" || e.kind === "halt")) refreshState();
 });
 
+let opened = false; // a view was chosen (by the address, a tab or the server's mode)
 function showView(name) {
+  opened = true;
   for (const button of document.querySelectorAll("#tabs button")) button.classList.toggle("active", button.dataset.view === name);
   for (const section of document.querySelectorAll(".view")) section.classList.toggle("active", section.id === `view-${name}`);
   if (name === "tree" && !tree.fitted) tree.fitted = tree.fit();
@@ -33,11 +38,19 @@ function showView(name) {
 }
 for (const button of document.querySelectorAll("#tabs button")) button.onclick = () => showView(button.dataset.view);
 
+// The view the page opens on: the one in the address (#map), else the one the server is for:
+// the console of a mission server (there is no tree until something is said), else the tree.
+// Once a view was shown (a tab clicked, a reconnection) the page stays where the person is.
+function openFirstView(info) {
+  if (!opened) showView(info.mode === "mission" ? "console" : "tree");
+}
+
 const pill = document.getElementById("conn");
 connect({
   onHello: (hello) => {
     store.reset(hello);
     const info = hello.info || {};
+    openFirstView(hello.replay ? {} : info);
     document.getElementById("what").textContent = hello.replay
       ? `replay of ${info.file}` : `${info.mode === "mission" ? "missions" : info.file || ""} · ${info.backend || ""}`;
     document.body.dataset.mode = hello.replay ? "replay" : info.mode;
@@ -66,5 +79,4 @@ document.getElementById("btn-continue").onclick = async () => { await act(postJs
 
 map.load();
 gestures.init();
-const first = location.hash.slice(1);
-if (views[first]) showView(first);
+if (views[location.hash.slice(1)]) showView(location.hash.slice(1));

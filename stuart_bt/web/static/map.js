@@ -6,13 +6,14 @@
 // Coordinates: map frame, metres, x forward, y left, yaw counter-clockwise (REP-103). The picture's
 // row 0 is the highest y; the canvas draws y upwards.
 
-import { act, el, getJson, postJson, toast } from "./api.js";
+import { el, getJson, postJson, toast } from "./api.js";
 
 const DEG = 180 / Math.PI;
 
 export class MapView {
-  constructor(store) {
+  constructor(store, jobs) {
     this.store = store;
+    this.jobs = jobs; // follows a walk or a Go to its end (a toast when it fails)
     this.canvas = document.getElementById("map-canvas");
     this.ctx = this.canvas.getContext("2d");
     this.tableBody = document.querySelector("#marker-table tbody");
@@ -197,14 +198,17 @@ export class MapView {
 
   // -- markers table --------------------------------------------------------------------------
   drawTable() {
+    const names = [], labels = [];
     const rows = Object.entries(this.markers).map(([name, m]) => {
       const inputs = {
-        name: el("input", { value: name, "aria-label": "name" }),
-        label: el("input", { value: m.display_name || "", "aria-label": "label" }),
+        name: el("input", { value: name, "aria-label": "name", oninput: () => fitColumn(names) }),
+        label: el("input", { value: m.display_name || "", "aria-label": "label", oninput: () => fitColumn(labels) }),
         x: el("input", { value: m.x, type: "number", step: "0.05", "aria-label": "x" }),
         y: el("input", { value: m.y, type: "number", step: "0.05", "aria-label": "y" }),
         yaw: el("input", { value: Math.round(m.yaw * DEG), type: "number", step: "5", "aria-label": "yaw" }),
       };
+      names.push(inputs.name);
+      labels.push(inputs.label);
       const save = () => this.saveRow(name, m, inputs);
       return el("tr", { "data-marker": name },
         el("td", {}, inputs.name), el("td", {}, inputs.label), el("td", {}, inputs.x), el("td", {}, inputs.y),
@@ -214,6 +218,8 @@ export class MapView {
           el("button", { onclick: () => this.remove(name, m), title: "delete" }, "✕")));
     });
     this.tableBody.replaceChildren(...rows);
+    fitColumn(names);
+    fitColumn(labels);
   }
 
   async saveRow(name, seen, inputs) {
@@ -232,7 +238,7 @@ export class MapView {
   }
 
   async goTo(name) {
-    await act(postJson("/api/goto", { marker: name }), `going to ${name}`);
+    await this.jobs.send(postJson("/api/goto", { marker: name }), `go to ${name}`, `going to ${name}`);
   }
 
   async edit(request, done) {
@@ -315,8 +321,9 @@ export class MapView {
       }
     } else if (g.kind === "walk") {
       this.draw();
-      await act(postJson("/api/walk", { x: round(g.x), y: round(g.y), yaw: g.yaw }),
-        `walking to (${g.x.toFixed(2)}, ${g.y.toFixed(2)})`);
+      const where = `(${g.x.toFixed(2)}, ${g.y.toFixed(2)})`;
+      await this.jobs.send(postJson("/api/walk", { x: round(g.x), y: round(g.y), yaw: g.yaw }), `walk to ${where}`,
+        `walking to ${where}`);
     } else if (g.kind === "add") {
       this.draw();
       const name = prompt("Name of the new marker (lower case, digits, _):", "");
@@ -328,3 +335,17 @@ export class MapView {
 }
 
 function round(v) { return Math.round(v * 1000) / 1000; }
+
+// Make a column's inputs as wide as the longest text in any of them, measured in their own font
+// (padding and border added: the inputs size their border box), so no name is cut off.
+const measure = document.createElement("canvas").getContext("2d");
+function fitColumn(inputs) {
+  if (!inputs.length) return;
+  const style = getComputedStyle(inputs[0]);
+  measure.font = `${style.fontStyle} ${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+  const text = Math.max(...inputs.map((input) => measure.measureText(input.value).width));
+  const chrome = ["paddingLeft", "paddingRight", "borderLeftWidth", "borderRightWidth"]
+    .reduce((sum, side) => sum + (parseFloat(style[side]) || 0), 0);
+  const width = `${Math.ceil(text + chrome) + 2}px`; // + 2: room for the caret at the end
+  for (const input of inputs) input.style.width = width;
+}
