@@ -427,6 +427,21 @@ def test_show_writes_pictures(tmp_path: Path, suffix: str, magic: bytes) -> None
     assert f"wrote {out}" in result.stderr
 
 
+def test_show_draws_the_wide_tour_left_to_right_unless_told_otherwise(tmp_path: Path) -> None:
+    _need_dot()
+    sizes = {}
+    for direction in ("auto", "tb", "lr"):
+        out = tmp_path / f"tour_{direction}.svg"
+        result = stuart("show", TOUR, "--direction", direction, "-o", out)
+        assert result.returncode == 0, result.stderr
+        found = re.search(r'<svg width="([\d.]+)pt" height="([\d.]+)pt"', out.read_text(encoding="utf-8"))
+        assert found
+        sizes[direction] = (float(found[1]), float(found[2]))
+    assert sizes["auto"] == sizes["lr"]
+    assert sizes["tb"][0] > 5 * sizes["tb"][1]  # forced top to bottom: the strip it used to be
+    assert "rankdir=TB" in stuart("show", TOUR, "--format", "dot", "--direction", "tb").stdout
+
+
 def test_show_yaml_export_validates_and_draws_the_same(tmp_path: Path) -> None:
     trees = tmp_path / "trees"
     trees.mkdir()

@@ -4,9 +4,12 @@ backend, judged by the exit status and the report."""
 from __future__ import annotations
 
 import argparse
+import io
 import json
 from pathlib import Path
 
+from stuart_bt.cli.chat import cmd_chat
+from stuart_bt.cli.main import build_parser
 from stuart_bt.cli.mission import add_command
 
 
@@ -45,3 +48,18 @@ def test_stop_then_continue_from_the_command_line_finishes_the_mission(tmp_path:
 def test_unknown_place_exits_1_after_saying_so(capsys):
     assert mission("go to the garage", "--no-wake", "--speed", "50") == 1
     assert "says      \"I don't know where the garage is." in capsys.readouterr().out
+
+
+def test_mission_prints_the_plan_line_chat_prints_for_the_same_words(capsys):
+    said = "Hey Stuart, wave and then go to the kitchen"
+    assert mission(said, "--speed", "50") == 0
+    mission_plans = [line for line in capsys.readouterr().out.splitlines() if "plan      mission" in line]
+    chat_out = io.StringIO()
+    args = build_parser("chat").parse_args(["chat", "--speed", "50"])
+    assert cmd_chat(args, stdin=io.StringIO(said + "\n"), out=chat_out) == 0
+    chat_plans = [line for line in chat_out.getvalue().splitlines() if "plan      mission" in line]
+
+    assert len(mission_plans) == 1 and mission_plans == chat_plans
+    tasks = mission_plans[0].split("plan      mission 1: ")[1].split("; ")
+    assert [t.split(" [")[0] for t in tasks] == ["gesture", "navigate_to_marker"]  # each task with its skills
+    assert all(t.endswith("]") for t in tasks), tasks

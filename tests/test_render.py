@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import textwrap
@@ -10,8 +11,10 @@ from pathlib import Path
 import pytest
 
 from stuart_bt.tree import render as render_module
+from stuart_bt.tree.layout import legibility, misfit
 from stuart_bt.tree.loader import load_tree, load_tree_text
 from stuart_bt.tree.render import RenderError, render
+from stuart_bt.tree.spec import TreeSpec
 
 TREES = Path(__file__).parent / "data" / "trees"
 needs_dot = pytest.mark.skipif(shutil.which("dot") is None, reason="graphviz not installed (make installs it)")
@@ -131,14 +134,79 @@ def _png_size(png: bytes) -> tuple[int, int]:
     return int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
 
 
+def _svg_size(svg: str | bytes) -> tuple[float, float]:
+    """Width and height in points, as Graphviz writes them on the <svg> element."""
+    text = svg if isinstance(svg, str) else svg.decode()
+    found = re.search(r'<svg width="([\d.]+)pt" height="([\d.]+)pt"', text)
+    assert found, text[:300]
+    return float(found[1]), float(found[2])
+
+
+def _sequence(leaves: int) -> TreeSpec:
+    """One sequence of ``leaves`` steps: as wide as it gets, one level deep."""
+    steps = "\n".join(f"      - speak: step {i} of the list" for i in range(leaves))
+    return load_tree_text(f"root:\n  sequence:\n    name: steps\n    children:\n{steps}\n")
+
+
+def _chain(depth: int) -> TreeSpec:
+    """``depth`` decorators nested over one leaf: as deep as it gets, one node wide."""
+    node = "wait: 1"
+    for _ in range(depth):
+        node = "retry:\n  times: 2\n  child:\n" + textwrap.indent(node, "    ")
+    return load_tree_text("root:\n" + textwrap.indent(node, "  ") + "\n")
+
+
+def _blocks(blocks: int, leaves: int) -> TreeSpec:
+    """A sequence of ``blocks`` sequences of ``leaves`` steps each."""
+    body = "\n".join(f"      - sequence:\n          name: block_{b}\n          children:\n"
+                     + "\n".join("            - gesture: wave" for _ in range(leaves)) for b in range(blocks))
+    return load_tree_text(f"root:\n  sequence:\n    name: blocks\n    children:\n{body}\n")
+
+
+SHAPES = {
+    "the lab tour": lambda: load_tree(Path(__file__).parents[1] / "trees" / "lab_tour.yaml"),
+    "all constructs": lambda: load_tree(TREES / "all_constructs.yaml"),
+    "a list of 3 steps": lambda: _sequence(3),
+    "a list of 12 steps": lambda: _sequence(12),
+    "a list of 40 steps": lambda: _sequence(40),
+    "4 blocks of 5 steps": lambda: _blocks(4, 5),
+    "8 nested decorators": lambda: _chain(8),
+    "3 nested decorators": lambda: _chain(3),
+}
+
+
 @needs_dot
-def test_a_wide_tree_is_drawn_left_to_right_so_its_picture_is_not_a_strip():
-    tour = load_tree(Path(__file__).parents[1] / "trees" / "lab_tour.yaml")
-    assert render_module.direction(tour.root) == "LR"
-    width, height = _png_size(render(tour, "png"))
-    assert max(width, height) / min(width, height) < 4, (width, height)
+@pytest.mark.parametrize("shape", SHAPES)
+def test_the_direction_chosen_gives_the_picture_that_fits_a_screen_better(shape: str) -> None:
+    """Graphviz's real picture both ways: the one chosen shows its labels at least as large once
+    shrunk to a screen, and when both fit whole it is shaped more like the screen."""
+    spec = SHAPES[shape]()
+    chosen = render_module.direction(spec.root)
+    other = {"LR": "tb", "TB": "lr"}[chosen]
+    mine, theirs = _svg_size(render(spec, "svg")), _svg_size(render(spec, "svg", direction=other))
+    assert legibility(mine) >= legibility(theirs), (chosen, mine, theirs)
+    if legibility(theirs) == 1.0:
+        assert misfit(mine) <= misfit(theirs), (chosen, mine, theirs)
 
 
-def test_a_tree_as_deep_as_it_is_wide_is_drawn_top_to_bottom():
-    assert render_module.direction(TOUR.root) == "TB"
-    assert "rankdir=TB" in render(TOUR, "dot")
+@needs_dot
+def test_a_wide_shallow_tree_is_drawn_left_to_right_so_its_picture_is_not_a_strip():
+    for spec in (load_tree(Path(__file__).parents[1] / "trees" / "lab_tour.yaml"), _sequence(12), _blocks(4, 5)):
+        assert "rankdir=LR" in render(spec, "dot")
+        width, height = _png_size(render(spec, "png"))
+        strip_width, strip_height = _png_size(render(spec, "png", direction="tb"))
+        assert strip_width / strip_height > 5  # top to bottom it would be a strip ...
+        assert max(width, height) / min(width, height) < 3, (width, height)  # ... left to right it is not
+
+
+def test_a_deep_narrow_tree_is_drawn_top_to_bottom():
+    assert render_module.direction(_chain(8).root) == "TB"
+    assert "rankdir=TB" in render(_chain(8), "dot")
+
+
+def test_the_direction_can_be_forced_either_way():
+    wide, deep = _sequence(12), _chain(8)
+    assert "rankdir=TB" in render(wide, "dot", direction="tb")
+    assert "rankdir=LR" in render(deep, "dot", direction="lr")
+    with pytest.raises(RenderError, match="unknown direction 'up'; expected one of auto, tb, lr"):
+        render(wide, "dot", direction="up")

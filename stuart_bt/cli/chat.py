@@ -32,13 +32,13 @@ from typing import Any, TextIO
 
 from ..core.errors import StuartError
 from ..core.events import Event
-from ..mission.executor import Mission, MissionExecutor, MissionOptions
-from ..run.executor import RunOutcome
+from ..mission.executor import Mission, MissionOptions
 from ..tree.render import render
-from ..tree.spec import NodeSpec, TreeSpec
+from ..tree.spec import TreeSpec
 from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
+from .plans import TreeWatchingExecutor, plan_line
 from .speed import add_speed_argument, speed_for
 
 EXIT_OK, EXIT_FAILED, EXIT_INTERRUPTED = 0, 1, 130
@@ -48,15 +48,18 @@ SLICE = 0.1  # wall seconds the main thread blocks at most, so it can take signa
 CLOSE_WAIT = 10.0  # wall seconds to wait for the running tree to halt when the chat ends
 
 
-class ChatExecutor(MissionExecutor):
+class ChatExecutor(TreeWatchingExecutor):
     """A mission executor that remembers the tree it runs, so ``:tree`` can draw it and the
-    decomposition can be summarised as a mission starts (the executor publishes only the
-    top-level tasks)."""
+    plan line can be printed as a mission starts."""
 
     def __init__(self, options: MissionOptions, on_tree: Callable[[TreeSpec, Mission], None]) -> None:
-        super().__init__(options)
         self.tree: TreeSpec | None = None
-        self._on_tree = on_tree
+        self._show_tree = on_tree
+        super().__init__(options, self._remember)
+
+    def _remember(self, spec: TreeSpec, mission: Mission) -> None:
+        self.tree = spec
+        self._show_tree(spec, mission)
 
     def close(self) -> None:
         """Stop the running tree before the base close. The base asks the executor running at
@@ -74,12 +77,6 @@ class ChatExecutor(MissionExecutor):
                     jobs.executor.request_stop("shutting down")
             jobs.worker.join(0.02)
         super().close()
-
-    def _run_tree(self, spec: TreeSpec, mission: Mission | None) -> tuple[RunOutcome, set[str], str | None]:
-        if mission is not None:  # speech-only trees (replies, explanations) are not missions
-            self.tree = spec
-            self._on_tree(spec, mission)
-        return super()._run_tree(spec, mission)
 
 
 class ChatPrinter:
@@ -111,7 +108,7 @@ class ChatPrinter:
     def on_tree(self, spec: TreeSpec, mission: Mission) -> None:
         with self._lock:
             self.statuses = {}
-        self.line(f"plan      mission {mission.id}: {decomposition(spec)}")
+        self.line(plan_line(spec, mission))
 
     def on_event(self, event: Event) -> None:
         if event.kind == "status" and event.path is not None:
@@ -158,21 +155,6 @@ def _intent(intent: dict[str, Any]) -> str:
     args = ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in intent.items()
                      if k not in ("action", "raw_text", "confidence") and v not in (None, "", [], {}, 0))
     return f"{intent.get('action')}({args})"
-
-
-def decomposition(spec: TreeSpec) -> str:
-    """The compiled tree in one line: each top-level task and the skills it decomposed into."""
-    parts = []
-    for task in spec.root.children or [spec.root]:
-        skills = [n.kind for n in _leaves(task) if n.kind != "condition"]
-        parts.append(f"{task.name} [{' > '.join(skills)}]" if task.children else task.name)
-    return "; ".join(parts)
-
-
-def _leaves(node: NodeSpec) -> list[NodeSpec]:
-    if not node.children:
-        return [node]
-    return [leaf for child in node.children for leaf in _leaves(child)]
 
 
 class Chat:

@@ -18,6 +18,7 @@ from typing import Any
 
 from .. import __version__
 from ..core.errors import StuartError
+from ..tree.layout import DIRECTIONS
 from . import gesture
 from .speed import add_speed_argument
 
@@ -61,7 +62,7 @@ def cmd_show(args: argparse.Namespace) -> int:
 
         out: str | bytes = to_yaml(spec, Path(args.output).parent if args.output else Path.cwd())
     else:
-        out = render(spec, fmt)
+        out = render(spec, fmt, direction=args.direction)
     if args.output:
         Path(args.output).parent.mkdir(parents=True, exist_ok=True)
         if isinstance(out, bytes):
@@ -236,6 +237,9 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
     p.add_argument("--format", choices=SHOW_FORMATS, help="default: from -o's extension, else unicode")
     p.add_argument("-o", "--output", metavar="OUT", help="write to a file instead of stdout")
     p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
+    p.add_argument("--direction", choices=DIRECTIONS, default="auto",
+                   help="dot, svg, png: lr draws the tree left to right, tb top to bottom; auto (default) "
+                        "picks from the tree's shape (wide and shallow: left to right)")
     p.set_defaults(func=cmd_show)
 
     p = sub.add_parser("run", help="run a tree against a backend with a live view; Ctrl-C stops cleanly")

@@ -13,7 +13,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..mission.executor import MissionExecutor, MissionOptions
+from ..mission.executor import Mission, MissionExecutor, MissionOptions
+from ..tree.spec import TreeSpec
+from .plans import TreeWatchingExecutor, plan_line
 from .speed import add_speed_argument
 
 SPOKEN_CMDS = ("say",)
@@ -38,7 +40,7 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--at", action="append", type=float, default=[], metavar="SECONDS",
                    help="clock seconds after the first utterance at which the matching --then is said")
     p.add_argument("--timeout", type=float, default=600.0, metavar="S", help="wall seconds to wait at most")
-    p.add_argument("--quiet", action="store_true", help="no trace of missions and speech")
+    p.add_argument("--quiet", action="store_true", help="no trace of plans, missions and speech")
     add_llm_arguments(p)
     p.set_defaults(func=cmd_mission)
     return p
@@ -54,7 +56,7 @@ def cmd_mission(args: argparse.Namespace) -> int:
                              conversation=args.llm, conversation_options=llm_options(args),
                              propose_tasks=args.propose)
     try:
-        mx = MissionExecutor(options)
+        mx = MissionExecutor(options) if args.quiet else TreeWatchingExecutor(options, _print_plan)
     except (ValueError, RuntimeError) as e:  # bad options, a missing model file
         print(f"stuart-bt: {e}", file=sys.stderr)
         return 1
@@ -75,6 +77,11 @@ def cmd_mission(args: argparse.Namespace) -> int:
         missions = list(mx.missions)
     ok = bool(missions) and missions[-1].status == "succeeded"
     return 0 if ok else 1
+
+
+def _print_plan(spec: TreeSpec, mission: Mission) -> None:
+    """The plan line, as ``chat`` prints it (no clock time: it is printed as the tree starts)."""
+    print(" " * 10 + plan_line(spec, mission), flush=True)
 
 
 def _trace(event: Any) -> None:

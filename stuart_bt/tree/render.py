@@ -17,6 +17,7 @@ from typing import Any
 from ..core.catalogue import COMPOSITES, DECORATORS
 from ..core.errors import StuartError
 from .export import to_yaml
+from .layout import DIRECTIONS, choose_direction, node_width
 from .spec import NodeSpec, TreeSpec
 
 FORMATS = ("unicode", "ascii", "dot", "svg", "png", "yaml")
@@ -32,22 +33,22 @@ BRANCHES = {
 FILL = {"SUCCESS": "#b7e1a1", "FAILURE": "#f4a6a6", "RUNNING": "#ffe08a", "INVALID": "#e0e0e0"}
 SHAPES = {"composite": "box", "decorator": "hexagon", "leaf": "ellipse"}
 MAX_VALUE = 40
-WIDE = 2.0  # leaves per level of depth above which a picture is laid out left to right
 
 
 class RenderError(StuartError, RuntimeError):
     """A drawing could not be made (unknown format, Graphviz missing or failing)."""
 
 
-def render(spec: TreeSpec, fmt: str, statuses: dict[str, str] | None = None) -> str | bytes:
-    """The tree drawn in ``fmt``; bytes for png, text for the others."""
+def render(spec: TreeSpec, fmt: str, statuses: dict[str, str] | None = None, direction: str = "auto") -> str | bytes:
+    """The tree drawn in ``fmt``; bytes for png, text for the others. ``direction`` (dot, svg,
+    png): ``tb`` top to bottom, ``lr`` left to right, ``auto`` from the tree's shape."""
     statuses = statuses or {}
     if fmt in ("unicode", "ascii"):
         return _text(spec.root, fmt, statuses)
     if fmt == "dot":
-        return _dot(spec, statuses)
+        return _dot(spec, statuses, direction)
     if fmt in ("svg", "png"):
-        image = _graphviz(_dot(spec, statuses), fmt)
+        image = _graphviz(_dot(spec, statuses, direction), fmt)
         return image.decode("utf-8") if fmt == "svg" else image
     if fmt == "yaml":
         return to_yaml(spec)
@@ -121,25 +122,18 @@ def _quote(text: str) -> str:
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
 
-def direction(root: NodeSpec) -> str:
-    """``TB`` (top to bottom) for a tree about as deep as it is wide, ``LR`` (left to right) for a
-    wide one: a tour of six stations drawn top to bottom is a strip thousands of pixels wide and a
-    few hundred high, unreadable on any screen; drawn left to right its leaves stack down the page
-    and its labels keep their size."""
-    leaves = depth = 0
-    stack = [(root, 1)]
-    while stack:
-        node, level = stack.pop()
-        depth = max(depth, level)
-        leaves += not node.children
-        stack += [(child, level + 1) for child in node.children]
-    return "LR" if leaves > WIDE * depth else "TB"
+def direction(root: NodeSpec, asked: str = "auto") -> str:
+    """Graphviz's ``rankdir`` for a picture of the tree: as ``asked`` (``tb``, ``lr``), or for
+    ``auto`` from its shape (stuart_bt.tree.layout: a wide, shallow tree runs left to right)."""
+    if asked not in DIRECTIONS:
+        raise RenderError(f"unknown direction {asked!r}; expected one of {', '.join(DIRECTIONS)}")
+    return choose_direction(root, lambda node: node_width(label(node), SHAPES[category(node)]), asked)
 
 
-def _dot(spec: TreeSpec, statuses: dict[str, str]) -> str:
+def _dot(spec: TreeSpec, statuses: dict[str, str], asked: str) -> str:
     out = [
         f"digraph {_quote(spec.root.name)} {{",
-        f'  graph [rankdir={direction(spec.root)}, fontname="Helvetica"];',
+        f'  graph [rankdir={direction(spec.root, asked)}, fontname="Helvetica"];',
         '  node [fontname="Helvetica", fontsize=11, style=filled, fillcolor="#ffffff"];',
         '  edge [arrowsize=0.6];',
     ]
