@@ -69,3 +69,40 @@ def test_a_stop_in_a_doubtful_utterance_stops_at_once():
     assert any(e.kind == "utterance" and e.data["kind"] == "stop" for e in events)
     assert [e.data["phase"] for e in events if e.kind == "proposal"] == ["offered"]
     assert not moved(events)
+
+
+def submit_heard(text: str, heard: dict[str, Any]) -> list[Any]:
+    events: list[Any] = []
+    with MissionExecutor(MissionOptions(speed=50.0)) as mx:
+        mx.events.subscribe(events.append)
+        mx.submit(text, source="mic", heard=heard)
+        assert mx.wait_idle(30)
+    return events
+
+
+def test_a_command_heard_with_low_confidence_is_asked_about():
+    events = submit_heard("Hey Stuart, go to the kitchen", {"confidence": 0.2})
+
+    [offer] = [e for e in events if e.kind == "proposal"]
+    assert "not sure I heard you right" in offer.data["doubt"][0] and not moved(events)
+
+
+def test_a_command_heard_clearly_is_done():
+    events = submit_heard("Hey Stuart, go to the kitchen", {"confidence": 0.8})
+
+    assert not [e for e in events if e.kind == "proposal"] and moved(events)
+
+
+def test_two_readings_asking_for_different_things_are_asked_about():
+    events = submit_heard("Hey Stuart, go to the kitchen", {"confidence": 0.8,
+                                                           "rival_reading": "Hey Stuart, go to the bathroom"})
+
+    [offer] = [e for e in events if e.kind == "proposal"]
+    assert "go to the bathroom" in offer.data["doubt"][0] and not moved(events)
+
+
+def test_a_stop_heard_with_low_confidence_still_stops():
+    events = submit_heard("Hey Stuart, stop", {"confidence": 0.1})
+
+    assert not [e for e in events if e.kind == "proposal"]
+    assert any(e.kind == "utterance" and e.data["kind"] == "stop" for e in events)

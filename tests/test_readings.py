@@ -50,3 +50,14 @@ def test_talk_stays_talk_when_no_reading_is_a_clear_command(lab):
                 ("Hey Stuart, good morning!", -0.32)]
     assert choose_reading(readings, *lab) == 0
     assert choose_reading([], *lab) == 0 and choose_reading([("hello", -0.1)], *lab) == 0
+
+
+def test_two_clear_readings_that_ask_for_different_things_are_rivals():
+    from stuart_bt.language.readings import rival_reading
+
+    parser, resolver = Parser(), Resolver.from_files(lab_markers())
+    readings = [("Hey Stuart, go to the kitchen.", -0.30), ("Hey Stuart, go to the bathroom.", -0.35),
+                ("Hey Stuart, go to the kitchen!", -0.36)]
+    assert rival_reading(readings, 0, parser, resolver) == 1
+    assert rival_reading([readings[0], readings[2]], 0, parser, resolver) is None  # the same command twice
+    assert rival_reading([readings[0], ("Hey Stuart, go to the bathroom.", -0.9)], 0, parser, resolver) is None

@@ -25,9 +25,9 @@ READING_MARGIN = 0.15  # average log probability per token a command reading may
 
 
 def is_clear_command(text: str, parser: Parser, resolver: Resolver) -> bool:
-    """Addressed to the robot, with intents, every target resolved."""
+    """Addressed to the robot, with intents, no doubt, every target resolved."""
     result = parser.parse(text)
-    if not result.wake or not result.intents:
+    if not result.wake or not result.intents or result.doubt:
         return False
     return all(r is None or r.ok for r in resolver.resolve_all(result.intents))
 
@@ -45,3 +45,23 @@ def choose_reading(readings: Sequence[tuple[str, float]], parser: Parser, resolv
         if is_clear_command(text, parser, resolver):
             return index
     return 0
+
+
+def rival_reading(readings: Sequence[tuple[str, float]], chosen: int, parser: Parser, resolver: Resolver,
+                  margin: float = READING_MARGIN) -> int | None:
+    """Index of another reading, within ``margin`` of the chosen one, that is a clear command
+    asking for something else ("go to the kitchen" / "go to the bathroom"): the robot heard two
+    things and should ask which. None when the chosen reading has no such rival."""
+    if len(readings) < 2 or not is_clear_command(readings[chosen][0], parser, resolver):
+        return None
+    mine = _asked(readings[chosen][0], parser)
+    for index, (text, score) in enumerate(readings):
+        if index == chosen or abs(score - readings[chosen][1]) > margin:
+            continue
+        if is_clear_command(text, parser, resolver) and _asked(text, parser) != mine:
+            return index
+    return None
+
+
+def _asked(text: str, parser: Parser) -> list[tuple[str, str, float, float, float]]:
+    return [(i.action, i.target, round(i.x, 2), round(i.y, 2), round(i.yaw, 2)) for i in parser.parse(text).intents]

@@ -19,9 +19,12 @@ utterances without a command are conversation.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..language import Parser, ParseResult, TaskIntent
+from ..language.doubt import Doubt
 
 IGNORE, STOP, CONTINUE, TASKS, CONVERSATION = "ignore", "stop", "continue", "tasks", "conversation"
 
@@ -84,3 +87,21 @@ def _strip_instead(text: str) -> tuple[str, bool]:
     if tail:
         return text[:tail.start()] + tail.group(1), True
     return text, False
+
+
+MIN_CONFIDENCE = 0.35  # a recogniser's confidence below this (exp(-1.05)) is a guess, not a hearing
+
+
+def hearing_doubts(command: Command, heard: Mapping[str, Any]) -> list[Doubt]:
+    """Doubt that comes from the ears, not the words: the recogniser was unsure of what it heard
+    (``confidence`` under MIN_CONFIDENCE), or heard two readings that ask for different things
+    (``rival_reading``). Only tasks are in doubt: a stop always wins."""
+    if not command.intents or all(i.action == "stop" for i in command.intents):
+        return []
+    found = []
+    confidence = heard.get("confidence")
+    if isinstance(confidence, (int, float)) and confidence < MIN_CONFIDENCE:
+        found.append(Doubt("confidence", f"I was not sure I heard you right (confidence {confidence:.2f})"))
+    if heard.get("rival_reading"):
+        found.append(Doubt("readings", f"I also heard: {heard['rival_reading']}"))
+    return found

@@ -50,7 +50,7 @@ from ..run.session import RunOptions, Session
 from ..tasks import project_domain
 from ..tree.spec import TreeSpec
 from .attention import Attention
-from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
+from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, hearing_doubts, interpret
 from .proposals import Offers
 from .queue import Job, JobQueue, Look, Mission, Say
 from .repair import Replanner, calls_done
@@ -184,6 +184,7 @@ class MissionExecutor:
         ``stuart-bt parse`` intents, a leading ``stop`` included); ``intents`` the ones to plan."""
         held = self.attention.take() and not woken
         command = interpret(self.parser, utterance, woken or held)
+        command.parse.doubt.extend(hearing_doubts(command, heard or {}))
         self.attention.after(command)
         self.events.publish("utterance", text=utterance, kind=command.kind, replace=command.replace,
                             intents=[i.to_dict() for i in command.intents],

@@ -25,7 +25,7 @@ from ..core.events import Event, EventStream
 from ..hearing.audio import AudioError
 from ..hearing.pipeline import Heard, hear
 from ..hearing.vad import Segmenter
-from ..language.readings import choose_reading
+from ..language.readings import choose_reading, rival_reading
 from .commands import STOP, interpret
 
 if TYPE_CHECKING:
@@ -159,7 +159,8 @@ def act_on_reading(robot: MissionExecutor, fields: dict[str, Any]) -> Command | 
             return None
     robot.events.publish("heard", acted=True, **fields)
     return robot.submit(fields["text"], source=fields["source"],
-                        heard={k: fields.get(k) for k in HEARD_IN_UTTERANCE})
+                        heard={**{k: fields.get(k) for k in HEARD_IN_UTTERANCE},
+                               **({"rival_reading": fields["rival_reading"]} if "rival_reading" in fields else {})})
 
 
 def chosen_reading(robot: MissionExecutor, fields: dict[str, Any]) -> dict[str, Any]:
@@ -167,6 +168,9 @@ def chosen_reading(robot: MissionExecutor, fields: dict[str, Any]) -> dict[str, 
     when that is another)."""
     readings = [(str(r[0]), float(r[1])) for r in fields.get("readings") or []]
     index = choose_reading(readings, robot.parser, robot.resolver) if readings else 0
+    rival = rival_reading(readings, index, robot.parser, robot.resolver) if readings else None
+    if rival is not None:  # two readings that ask for different things: the robot asks which
+        fields = {**fields, "rival_reading": readings[rival][0]}
     if index == 0:
         return fields
     return {**fields, "text": readings[index][0], "recognised": fields["text"]}
