@@ -16,6 +16,11 @@ loopback) driven by :class:`~stuart_bt.conversation.openai_http.OpenAIConversati
 same tokens: the ratio is what the in-process path saves over HTTP + server. When the server's
 packages are absent the anchor is ``null`` with a note. Ratios are medians of per-prompt ratios.
 Goals: first token <= 0.5 s (a pause people accept before a robot speaks), reply <= 2 s.
+
+Beside it, the fact-answer path (``facts.p99``): questions about the robot's state and the lab
+answered by :class:`stuart_bt.conversation.facts.FactAnswers` before any model, p99 over
+FACT_QUESTIONS x rounds; anchor: the local model's median first token in the same run (what the
+same question would have waited for). Goal: p99 <= 20 ms.
 """
 
 from __future__ import annotations
@@ -40,6 +45,11 @@ MAX_TOKENS = 48
 PROMPTS = ["Hello! Who are you?", "Where is the kitchen?", "What happens in the drone cage?",
            "What do you see?", "Who runs this lab?", "Thank you, goodbye!"]
 CONTEXT = {"at": "entrance", "detections": [{"label": "bottle", "distance": 1.2}, "cup"]}
+GOAL_FACTS_MS = 20.0
+FACT_QUESTIONS = ["What are you holding?", "Where are you?", "What are you doing?", "What can you do?",
+                  "What do you see?", "Where is the cup?", "What happens in the drone cage?",
+                  "Who runs the 3D printers?", "When is the lab open?", "Tell me about the reading room",
+                  "How tall are you?", "Where's the kitchen?"]
 SERVER_PACKAGES = ("fastapi", "uvicorn", "sse_starlette", "starlette_context", "pydantic_settings")
 
 
@@ -116,6 +126,29 @@ def run(quick: bool) -> list[Result]:
                               note + ("" if anchor else "; anchor null: llama_cpp.server packages absent"),
                               paired_ratio(samples["local"], samples["server"]) if anchor else None))
     warm = statistics.median(first["local"]) * 1000
+    results.append(_facts(quick, warm))
     results.append(Result(f"{NAME}.cold_first_token", cold * 1000, "ms", Anchor("warm first_token (median)", warm),
                           None, None, "first question after load, system prompt not yet cached; warm() removes it"))
     return results
+
+
+def _facts(quick: bool, first_token_ms: float) -> Result:
+    from stuart_bt.conversation.facts import FactAnswers, Situation
+    from stuart_bt.conversation.prompt import load_knowledge
+
+    facts = FactAnswers(load_knowledge())
+    situation = Situation(at="entrance", held="cup", seen=["bottle"], places={"kitchen": "kitchen"},
+                          objects={"cup": "near the workbench"})
+    samples = []
+    for _ in range(20 if quick else 200):
+        for question in FACT_QUESTIONS:
+            start = time.perf_counter()
+            answered = facts.answer(question, situation)
+            samples.append((time.perf_counter() - start) * 1000)
+            assert answered, question  # every one of these has a fact answer: the figure is of that path
+    samples.sort()
+    p99 = samples[int(len(samples) * 0.99) - 1]
+    return Result(f"{NAME}.facts_p99", p99, "ms", Anchor("local model first token (median, same run)", first_token_ms),
+                  f"<= {GOAL_FACTS_MS:.0f} ms", p99 <= GOAL_FACTS_MS,
+                  f"{len(FACT_QUESTIONS)} state and lab questions x {len(samples) // len(FACT_QUESTIONS)} rounds, "
+                  "FactAnswers.answer, no model")
