@@ -111,11 +111,14 @@ def cmd_run(args: argparse.Namespace) -> int:
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         with session:
+            talk = _listen_to_typing(session) if args.talk else None
             view.start()
             try:
                 outcome = session.run()
             finally:
                 view.stop()
+                if talk is not None:
+                    talk.close()
     finally:
         # Everything is stopped and reaped now. A standalone CLI keeps a handler that exits
         # quietly (no KeyboardInterrupt traceback while it prints the summary); an in-process
@@ -131,6 +134,25 @@ def cmd_run(args: argparse.Namespace) -> int:
     if outcome.status == "SUCCESS":
         return EXIT_OK
     return 128 + interrupted[0] if interrupted else EXIT_FAILED
+
+
+def _listen_to_typing(session: Any) -> Any:
+    """``run --talk``: utterances typed on standard input, each a line, go to the running tree
+    (:class:`~stuart_bt.mission.tour_talk.TourTalk`) from a reader thread that ends with the input."""
+    import threading
+
+    from ..language import Parser, Resolver
+    from ..mission.tour_talk import TourTalk
+
+    talk = TourTalk(session, session.executor, Parser(), Resolver.from_files(session.spec.markers_file))
+
+    def read() -> None:
+        for line in sys.stdin:
+            if line.strip():
+                talk.submit(line.strip())
+
+    threading.Thread(target=read, name="talk-input", daemon=True).start()
+    return talk
 
 
 def cmd_schema(args: argparse.Namespace) -> int:
@@ -261,6 +283,10 @@ def build_parser(selected: str | None = None) -> argparse.ArgumentParser:
     p.add_argument("--markers", metavar="FILE", help="marker file (overrides the tree's 'markers:')")
     p.add_argument("--daemon-options", metavar="FILE",
                    help="JSON or YAML: {family: {option: value}} for the daemons (docs/robot.md)")
+    p.add_argument("--talk", action="store_true",
+                   help="take utterances typed on standard input while the tree runs, one a line: a question "
+                        "is answered at the next pause in speech and the tree goes on; 'Hey Stuart, stop' holds "
+                        "it (motion stopped) until 'Hey Stuart, continue'")
     p.set_defaults(func=cmd_run)
 
     gesture.add_command(sub)

@@ -6,6 +6,10 @@ publishes a ``status`` event for every node whose status changed, so that views 
 need to reach into the tree. Deadlines advance by a fixed period (no drift); a tick that overruns
 its period publishes a rate-limited ``warning`` and the schedule re-synchronises.
 
+Holding is for a pause a person asks for ("stop" during a tour, then "continue"):
+:meth:`hold` stops the running leaves and the motion but keeps the tree's place; :meth:`resume`
+goes on from there.
+
 Stopping is cooperative and bounded: :meth:`request_stop` (from a signal handler, another thread,
 a ``stop`` utterance) is honoured at the start of the next tick: the tree is halted (running
 leaves cancel their daemon commands) and the ``on_halt`` hooks run (the runner sends ``stop`` to
@@ -61,6 +65,9 @@ class Executor:
         self._paths = [getattr(n, "spec_path", n.name) for n in self._nodes]
         self._last = [n.status for n in self._nodes]
         self._stop = threading.Event()
+        self._hold = threading.Event()  # "stop" said during a tour: paused, "continue" goes on
+        self._hold_reason = ""
+        self._holding = False  # the loop has paused the tree (read on the tick thread only)
         self._stop_reason: str | None = None
         self._stop_status = "STOPPED"
         self._last_overrun_warning = float("-inf")
@@ -78,6 +85,53 @@ class Executor:
             self._stop_status = status
         self._stop_reason = reason
         self._stop.set()
+
+    def hold(self, reason: str = "hold requested") -> None:
+        """Pause the tree at the start of the next tick (any thread): the running leaves are
+        stopped, so their daemons stop the motion, and the ``on_halt`` hooks run; the composites
+        keep their place, so :meth:`resume` goes on from the step that was interrupted (which
+        starts again) instead of from the beginning. Stopping always wins over a hold."""
+        self._hold_reason = reason
+        self._hold.set()
+
+    def resume(self) -> None:
+        """Go on after :meth:`hold` (any thread)."""
+        self._hold.clear()
+
+    @property
+    def held(self) -> bool:
+        """A hold was asked for (it takes effect at the next tick)."""
+        return self._hold.is_set()
+
+    @property
+    def paused(self) -> bool:
+        """The tree is paused: its running leaves and the motion were stopped (tick thread)."""
+        return self._holding
+
+    def _pause(self) -> None:
+        """On the tick thread, once per hold: stop every running leaf and the daemons' motion."""
+        self.events.publish("hold", reason=self._hold_reason)
+        for node in self._nodes:
+            if not node.children and node.status == Status.RUNNING:
+                node.stop(Status.INVALID)
+        self.publish_status_changes()
+        for hook in self.on_halt:
+            hook()
+
+    def _held_tick(self) -> bool:
+        """True while held (the duties run, the tree does not tick); publishes ``resume`` once the
+        hold is lifted."""
+        if self._hold.is_set():
+            if not self._holding:
+                self._holding = True
+                self._pause()
+            for hook in self.pre_tick:
+                hook()
+            return True
+        if self._holding:
+            self._holding = False
+            self.events.publish("resume")
+        return False
 
     def tick_once(self) -> Status:
         for hook in self.pre_tick:
@@ -115,6 +169,11 @@ class Executor:
                 status_text, reason = self._stop_status, self._stop_reason
                 self.halt(reason or "stop requested")
                 break
+            if self._held_tick():
+                started += self.period  # time on hold is not run time (--max-duration)
+                deadline += self.period
+                self._sleep_until(deadline)
+                continue
             status = self.tick_once()
             if status in FINISHED:
                 status_text = status.value
