@@ -87,7 +87,7 @@ def test_every_problem_in_a_file_is_reported_with_its_line_and_column() -> None:
         """)
     assert errors == [
         ("bad.yaml:7:12: primitives.go: unknown skill 'navigat' (did you mean 'navigate'?) "
-         "(skills: navigate, approach, turn, pick, release, gesture, speak, find, observe, wait, stop)"),
+         "(skills: navigate, approach, view, turn, pick, release, gesture, speak, find, observe, wait, stop)"),
         ("bad.yaml:11:12: primitives.grab: skill 'pick' has no parameter 'objekt' (did you mean 'object'?) "
          "(parameters: object, arm)"),
         ("bad.yaml:14:10: primitives.drop.pre: unknown name 'helf': not a parameter of 'drop' (obj) "

@@ -104,7 +104,7 @@ def test_the_builder_builds_the_compiled_tree_and_skip_if_skips_a_step_whose_eff
 
     assert root.status == Status.SUCCESS
     assert started == ["mission/find/acknowledge", "mission/find/search/scan/glance/optional/find",
-                       "mission/find/search/scan/scan/scan/scan/look", "mission/find/face"], \
+                       "mission/find/search/scan/scan/scan/scan/look", "mission/find/view"], \
         "after the first glance saw it, the other turns and glances were skipped"
 
 

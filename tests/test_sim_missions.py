@@ -16,12 +16,14 @@ import pytest
 from stuart_bt.core.events import Event
 from stuart_bt.core.world import KnownObject
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
+from stuart_bt.perception.projection import head_camera_view
 
 pytestmark = pytest.mark.sim
 
 FAMILIES = {"loco", "tts", "gesture", "pick", "vision"}
 WALL_LIMIT = 60.0  # wall seconds any one wait may take before the test fails
 BRAKE = 1.0  # m/s^2: the walking controller's acceleration limit (docs/sim.md)
+CAMERA = head_camera_view()  # what the head camera sees from a base pose (stuart_bt.maps.viewpoints)
 
 
 class Trace:
@@ -241,9 +243,45 @@ def test_an_object_no_arm_can_reach_from_any_side_is_said_and_nothing_moves():
         after = state(mx)
     mission = mx.missions[0]
     assert mission.status == "failed"
-    assert mission.reason.startswith("Sorry, I could not pick up the apple: no free spot to stand within")
+    assert trace.said()[-1] == ("Sorry, I could not pick up the apple: I can't get close enough to it - "
+                                "the kitchen table is in the way."), "not said in words people use"
+    assert mission.reason.startswith("Sorry, I could not pick up the apple: no free spot to stand within"), \
+        "the technical reason left the report"
+    assert mission.failure is not None and mission.failure["blocked_by"] == ["kitchen table"]
+    assert mission.repairs == 1, "a repair that met the same failure again was tried again"
     assert distance(after["base"], before["base"]["x"], before["base"]["y"]) < 0.01
     assert not trace.commands("pick", "pick"), "an arm moved"
+
+
+@pytest.mark.parametrize(("where", "spot"), [
+    ("where the lab keeps it, 0.25 m in from the kitchen table's edge", (4.35, 1.85, 0.79)),
+    ("the middle of the kitchen table", (4.31, 1.5, 0.79)),
+    ("the middle of the workbench, whose back is at the wall", (1.0, -3.16, 0.89)),
+])
+def test_find_an_object_no_arm_could_reach_walks_to_where_the_camera_sees_it(where, spot):
+    """Finding needs sight, not reach: from the table's edge the head camera sees an apple that no
+    arm could reach (the previous test), so the robot looks from there, and memory takes the
+    position the camera measured."""
+    with robot() as (mx, trace):
+        mx.session.world.call("set_object", label="apple", x=spot[0], y=spot[1], z=spot[2])
+        mx.world.objects["apple"] = KnownObject("apple", *spot)
+        mx.submit("Hey Stuart, find the apple")
+        assert mx.wait_idle(WALL_LIMIT)
+        final = state(mx)
+
+    mission = mx.missions[0]
+    assert mission.status == "succeeded", mission.said or mission.reason
+    assert mission.repairs == 0
+    skills = [(e.data["skill"], e.data["outcome"]) for e in trace.events if e.kind == "leaf"
+              and e.data["skill"] in ("approach", "view", "find")]
+    assert skills == [("view", "SUCCESS"), ("find", "SUCCESS")], skills
+    apple, base = final["objects"]["apple"], final["base"]
+    assert CAMERA.miss((base["x"], base["y"], base["yaw"]), (apple["x"], apple["y"], apple["z"])) is None, \
+        f"the camera does not see the apple at {apple} from {base}"
+    assert distance(base, apple["x"], apple["y"]) > 0.39, "it stood within arm's reach: not the case tested"
+    assert not final["collided"], final["collision_with"]
+    remembered = mx.world.objects["apple"]
+    assert remembered.source == "vision" and math.hypot(remembered.x - apple["x"], remembered.y - apple["y"]) < 0.03
 
 
 def body_frame(base: dict[str, float], x: float, y: float) -> tuple[float, float]:
@@ -265,16 +303,17 @@ def test_go_to_an_object_ends_facing_it_within_arm_reach():
     assert not final["collided"]
 
 
-def test_find_the_cup_ends_facing_it_with_the_camera_s_position_in_memory():
+def test_find_the_cup_ends_where_the_camera_sees_it_with_the_camera_s_position_in_memory():
     with robot() as (mx, trace):
         mx.submit("Hey Stuart, find the cup")
         assert mx.wait_idle(WALL_LIMIT)
         final = state(mx)
 
     assert mx.missions[0].status == "succeeded", mx.missions[0].reason
-    cup = final["objects"]["cup"]
-    ahead, left = body_frame(final["base"], cup["x"], cup["y"])
-    assert 0.2 < ahead < 0.45 and abs(math.atan2(left, ahead)) < math.radians(8), (ahead, left)  # facing it
+    cup, base = final["objects"]["cup"], final["base"]
+    assert CAMERA.miss((base["x"], base["y"], base["yaw"]), (cup["x"], cup["y"], cup["z"])) is None, (cup, base)
+    ahead, left = body_frame(base, cup["x"], cup["y"])
+    assert abs(math.atan2(left, ahead)) < math.radians(8), (ahead, left)  # facing it
     looks = [e for e in trace.events if e.kind == "leaf" and e.data["skill"] == "find"]
     assert looks and looks[-1].data["outcome"] == "SUCCESS"
     remembered = mx.world.objects["cup"]

@@ -88,7 +88,7 @@ def test_a_robot_away_from_its_last_marker_is_at_no_marker() -> None:
                          "find object=bottle", "pick object=bottle"]),  # the camera has the last word up close
     ("gesture('high wave')", ["speak text=Doing a high wave", "gesture play=high wave"]),
     ("stop", ["speak text=Stopping", "stop"]),
-    ("find(cup)", ["speak text=Looking for the cup", "approach object=cup standoff=0.29 lateral=0", "find object=cup"]),
+    ("find(cup)", ["speak text=Looking for the cup", "view object=cup", "find object=cup"]),  # sight, not reach
 ])
 def test_each_intent_starts_with_its_acknowledgement(task: str, expected: list[str]) -> None:
     p = plan(task)
@@ -194,7 +194,9 @@ def test_find_remembered_objects_directly_and_unknown_ones_by_looking_around() -
     p = plan("find(orange)")
     assert p.tasks[0].method == "look_around"
     assert [s.skill for s in p.primitives()] == ["speak", "find", "turn", "find", "turn", "find", "turn", "find",
-                                                 "approach"]
+                                                 "view"]
+    assert [s.skill for s in plan("find(bottle)").primitives()] == ["speak", "view", "find"], \
+        "finding walks to where the camera sees it, not to arm's reach"
 
 
 # -- tour, greet, go_and_say, do_all ---------------------------------------------------------------------

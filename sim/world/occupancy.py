@@ -8,7 +8,10 @@ regenerated with::
 
     python -m stuart_bt.sim.world.occupancy --scene lab --out sim/maps/lab
 
-and tests/test_world_occupancy.py checks that they still match the scene.
+which also writes ``lab_furniture.json``: every static geom's outline under the name of the
+body it belongs to, as people say it ("kitchen_table" -> "kitchen table"), so the robot can say
+what is in its way (:mod:`stuart_bt.maps.furniture`). tests/test_world_occupancy.py checks that
+they still match the scene.
 
 Only geoms that a robot could walk into count: static (welded to the world), collidable,
 reaching between :data:`FLOOR_CLEAR` and :data:`ROBOT_HEIGHT` above the floor. Free objects,
@@ -21,11 +24,13 @@ import argparse
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import mujoco
 import numpy as np
 
 from stuart_bt.maps.files import write_map
+from stuart_bt.maps.furniture import Piece, circle_outline, write_furniture
 from stuart_bt.maps.grid import ROBOT_RADIUS, OccupancyGrid
 from stuart_bt.maps.markers import load_markers
 from stuart_bt.maps.picture import draw_map_png
@@ -44,6 +49,7 @@ class Footprint:
     radius: float | None = None
     polygon: tuple[tuple[float, float], ...] = ()
     z_low: float = 0.0  # the geom's lowest point: a table top leaves room for feet below it
+    group: str = ""  # the body it belongs to (the geom's own name for one placed in the world body)
 
     def distance(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """Distance from points to the outline (0 inside)."""
@@ -86,17 +92,19 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
         mat = data.geom_xmat[g].reshape(3, 3)
         size = model.geom_size[g]
         name = model.geom(g).name or f"geom{g}"
+        body = int(model.geom_bodyid[g])
+        group = (model.body(body).name if body != 0 else "") or name
         vertical = abs(mat[2, 2]) > 0.999
         if gtype in (int(mujoco.mjtGeom.mjGEOM_CYLINDER), int(mujoco.mjtGeom.mjGEOM_CAPSULE)) and vertical:
             half = size[1] + (size[0] if gtype == int(mujoco.mjtGeom.mjGEOM_CAPSULE) else 0.0)
             if _blocks(pos[2] - half, pos[2] + half):
                 out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
-                                     z_low=float(pos[2] - half)))
+                                     z_low=float(pos[2] - half), group=group))
             continue
         if gtype == int(mujoco.mjtGeom.mjGEOM_SPHERE):
             if _blocks(pos[2] - size[0], pos[2] + size[0]):
                 out.append(Footprint(name, (float(pos[0]), float(pos[1])), radius=float(size[0]),
-                                     z_low=float(pos[2] - size[0])))
+                                     z_low=float(pos[2] - size[0]), group=group))
             continue
         # Anything else: the geom's own bounding box, turned into the world and projected.
         centre, half = model.geom_aabb[g, :3], model.geom_aabb[g, 3:]
@@ -106,8 +114,18 @@ def static_footprints(model: mujoco.MjModel) -> list[Footprint]:
             continue
         hull = _convex_hull([(float(c[0]), float(c[1])) for c in corners])
         out.append(Footprint(name, (float(pos[0]), float(pos[1])), polygon=tuple(hull),
-                             z_low=float(corners[:, 2].min())))
+                             z_low=float(corners[:, 2].min()), group=group))
     return out
+
+
+def furniture_pieces(footprints: Sequence[Footprint]) -> list[Piece]:
+    """The map's named furniture: the outlines of each body's geoms under the body's name, as
+    people say it (underscores read as spaces), in the order the scene lists them."""
+    outlines: dict[str, list[tuple[tuple[float, float], ...]]] = {}
+    for fp in footprints:
+        outline = circle_outline(*fp.centre, fp.radius) if fp.radius is not None else fp.polygon
+        outlines.setdefault(fp.group or fp.name, []).append(tuple(outline))
+    return [Piece(group.replace("_", " ").strip(), tuple(shapes)) for group, shapes in outlines.items()]
 
 
 def _blocks(z_low: float, z_high: float) -> bool:
@@ -189,6 +207,13 @@ def scene_grid(scene: str = "lab", resolution: float = 0.05, inflation: float = 
     return grid_from_model(model, resolution, inflation)
 
 
+def scene_furniture(scene: str = "lab") -> list[Piece]:
+    """The named furniture of a scene file (what ``main`` writes next to the map)."""
+    from .scene import scene_path
+
+    return furniture_pieces(static_footprints(mujoco.MjModel.from_xml_path(str(scene_path(scene)))))
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m stuart_bt.sim.world.occupancy",
                                      description="Write a scene's occupancy map (map_server PNG + YAML).")
@@ -201,8 +226,10 @@ def main(argv: list[str] | None = None) -> int:
     from .scene import MAPS_DIR
 
     grid = scene_grid(options.scene, options.resolution, options.inflation)
-    png, yaml_path = write_map(grid, options.out or MAPS_DIR / options.scene)
-    print(f"wrote {png} and {yaml_path} ({grid.shape[1]} x {grid.shape[0]} cells)")
+    stem = Path(options.out or MAPS_DIR / options.scene)
+    furniture = write_furniture(scene_furniture(options.scene), stem.parent / f"{stem.name}_furniture.json")
+    png, yaml_path = write_map(grid, stem, furniture=furniture.name)
+    print(f"wrote {png}, {yaml_path} and {furniture} ({grid.shape[1]} x {grid.shape[0]} cells)")
     if options.picture:
         draw_map_png(grid, load_markers(MAPS_DIR / "lab_markers.json"), [], {}, options.picture)
         print(f"wrote {options.picture}")

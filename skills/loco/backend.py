@@ -13,7 +13,8 @@ from typing import Any
 
 from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
-from stuart_bt.daemon.backend import Activity, Backend, Handler
+from stuart_bt.daemon.backend import Activity, Backend, DaemonError, Handler
+from stuart_bt.maps.viewpoints import CameraView
 
 DEFAULT_TOLERANCE = 0.10  # metres
 DEFAULT_YAW_TOLERANCE = 0.0873  # radians (5 degrees)
@@ -41,14 +42,28 @@ class RelativeGoal:
 class ApproachGoal:
     """Stand so that the point (x, y) is ``standoff`` metres ahead of the robot's base and
     ``lateral`` metres to its left (negative: right), i.e. in front of one shoulder, where an arm
-    reaches furthest: how the robot walks up to an object to pick it or look at it. A backend may
-    mirror ``lateral`` when that side is blocked. Backends turn it into a :class:`MapGoal` before
-    walking (:meth:`LocoBackend.approach_pose`); the sim and the robot pick a free spot on their map."""
+    reaches furthest: how the robot walks up to an object to pick it (to look at it, see
+    :class:`ViewGoal`). A backend may mirror ``lateral`` when that side is blocked. Backends turn
+    it into a :class:`MapGoal` before walking (:meth:`LocoBackend.approach_pose`); the sim and the
+    robot pick a free spot on their map."""
 
     x: float
     y: float
     standoff: float
     lateral: float = 0.0
+
+
+@dataclass(frozen=True)
+class ViewGoal:
+    """Stand where the head camera sees the point (x, y, z): in its picture and range, with
+    nothing on the map in between; how the robot walks up to an object to look at it, which
+    needs no arm's reach (a cup in the middle of a table is seen from its edge). Backends turn
+    it into a :class:`MapGoal` (:meth:`LocoBackend.view_pose`); the robot stays, or only turns,
+    when it sees the point from where it stands."""
+
+    x: float
+    y: float
+    z: float
 
 
 def approach_stand(goal: ApproachGoal, heading: float, lateral: float | None = None) -> MapGoal:
@@ -82,6 +97,15 @@ def standoff_on_line(here: Pose, goal: ApproachGoal) -> MapGoal:
     return approach_stand(goal, heading)
 
 
+def unreachable_data(goal: str, x: float, y: float, blocked_by: list[str], **more: Any) -> dict[str, Any]:
+    """The data of an ``unreachable`` error, so what is said about it can be built from facts:
+    which kind of ``goal`` (``reach``: an approach, ``view``: a viewpoint, ``pose``: a map pose,
+    ``relative``: a body-relative move), the point, and ``blocked_by``: the names of the
+    furniture in the way, most to blame first (empty when the map knows no names)."""
+    return {"goal": goal, "x": round(x, 3), "y": round(y, 3), "blocked_by": blocked_by,
+            **{k: round(v, 3) if isinstance(v, float) else v for k, v in more.items()}}
+
+
 class LocoBackend(Backend):
     family = "loco"
 
@@ -110,17 +134,50 @@ class LocoBackend(Backend):
         here = self.pose()
         return standoff_on_line(here, goal)
 
+    @property
+    def camera(self) -> CameraView:
+        """The head camera, for choosing where to look from (imported here: only walks that
+        look need the perception package)."""
+        from stuart_bt.perception.projection import head_camera_view
+
+        return head_camera_view()
+
+    def view_pose(self, goal: ViewGoal) -> MapGoal:
+        """Where to stand to see a point. Without a map: here, when the camera sees it from here
+        (turning to face it if that is needed), else on the line from the robot to the point, at
+        the distance that puts it in the middle of the picture. Map-aware backends override this
+        and also keep furniture out of the line of sight."""
+        here = self.pose()
+        camera = self.camera
+        target = (goal.x, goal.y, goal.z)
+        facing = standoff_on_line(here, ApproachGoal(goal.x, goal.y, 0.0)).yaw
+        assert facing is not None
+        for yaw in (here.yaw, facing):
+            if camera.miss((here.x, here.y, yaw), target) is None:
+                return MapGoal(here.x, here.y, yaw)
+        centred = camera.centred(goal.z)
+        if centred is None:
+            raise DaemonError("unreachable", f"the camera sees no point at height {goal.z:.2f} m from any distance",
+                              data=unreachable_data("view", goal.x, goal.y, [], z=goal.z))
+        return approach_stand(ApproachGoal(goal.x, goal.y, centred + camera.ahead, camera.left), facing)
+
     def commands(self) -> dict[str, Handler]:
         return {"navigate": self._navigate_command, "turn": self._turn_command}
 
     def _navigate_command(self, args: dict[str, Any]) -> Activity:
         cmd = "navigate"
-        a.only_known(args, ("pose", "relative", "approach", "marker", "tolerance", "yaw_tolerance"), cmd)
-        form = a.one_of(args, ("pose", "relative", "approach"), cmd)
-        if form == "approach":
+        a.only_known(args, ("pose", "relative", "approach", "view", "marker", "tolerance", "yaw_tolerance"), cmd)
+        form = a.one_of(args, ("pose", "relative", "approach", "view"), cmd)
+        if form == "view":
+            spot = a.mapping(args, "view", cmd)
+            a.only_known(spot, ("x", "y", "z"), "navigate view")
+            target: MapGoal | RelativeGoal = self.view_pose(ViewGoal(
+                a.number(spot, "x", "navigate view"), a.number(spot, "y", "navigate view"),
+                a.number(spot, "z", "navigate view", default=0.0)))
+        elif form == "approach":
             spot = a.mapping(args, "approach", cmd)
             a.only_known(spot, ("x", "y", "standoff", "lateral"), "navigate approach")
-            target: MapGoal | RelativeGoal = self.approach_pose(ApproachGoal(
+            target = self.approach_pose(ApproachGoal(
                 a.number(spot, "x", "navigate approach"), a.number(spot, "y", "navigate approach"),
                 a.number(spot, "standoff", "navigate approach", minimum=0.0),
                 a.number(spot, "lateral", "navigate approach", default=0.0),

@@ -10,7 +10,12 @@ Options: ``world`` (socket path, required), ``map`` (map YAML, default the lab's
 ``robot_radius`` (0.3 m), ``relative_clearance`` (0.15 m: margin for body-relative moves, which
 are driven straight without a global plan, like the robot's odometry moves, and for docking),
 ``max_speed`` (0.6 m/s), ``blocked_timeout`` (20 s), ``poll`` (0.1 s), ``approach_slack`` (0.1 m:
-how much further than asked an approach may stand when furniture blocks every closer spot).
+how much further than asked an approach may stand when furniture blocks every closer spot),
+``view_range`` (2.0 m: the farthest the head camera is trusted to see an object from).
+
+A goal it cannot reach fails ``unreachable`` before the base moves, with data saying which kind
+of goal it was and the names of the furniture in the way (the map's furniture file), so the
+robot can say "the kitchen table is in the way" instead of coordinates.
 """
 
 from __future__ import annotations
@@ -24,7 +29,10 @@ from stuart_bt.core.clock import Clock
 from stuart_bt.core.world import Pose
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Progress
 from stuart_bt.maps.files import read_map
+from stuart_bt.maps.furniture import furniture_for_map, ranked
+from stuart_bt.maps.grid import Grid
 from stuart_bt.maps.paths import PlanningError, path_length, plan
+from stuart_bt.maps.viewpoints import CameraView, NoViewpoint, StandingMap, find_viewpoint
 from stuart_bt.sim.world.client import WorldClient, WorldError
 
 from .backend import (
@@ -33,9 +41,11 @@ from .backend import (
     MapGoal,
     NavigateGoal,
     RelativeGoal,
+    ViewGoal,
     approach_stand,
     goal_pose,
     standoff_on_line,
+    unreachable_data,
 )
 from .dry import wrap
 
@@ -118,6 +128,9 @@ class SimLoco(LocoBackend):
         self.grid = occupancy.planning_grid()
         # body-relative moves are odometry moves (no global plan), checked against a thinner margin
         self.near_grid = occupancy.planning_grid(float(options.get("relative_clearance", 0.15)))
+        self.space = StandingMap(Grid(occupancy.occupied, occupancy.resolution, occupancy.origin), self.grid,
+                                 self.near_grid, furniture=furniture_for_map(map_file))
+        self.view_range = float(options.get("view_range", 2.0))
         self.max_speed = float(options.get("max_speed", 0.6))
         self.blocked_timeout = float(options.get("blocked_timeout", 20.0))
         self.approach_slack = float(options.get("approach_slack", 0.10))
@@ -144,16 +157,19 @@ class SimLoco(LocoBackend):
         if math.hypot(gx - start.x, gy - start.y) <= goal.tolerance:
             waypoints = [(start.x, start.y)]
         elif isinstance(goal.target, RelativeGoal):
-            if not self.near_grid.segment_free((start.x, start.y), (gx, gy)):
+            hit = self.near_grid.first_blocked((start.x, start.y), (gx, gy))
+            if hit is not None:
                 raise DaemonError("unreachable", f"moving by ({goal.target.dx:g}, {goal.target.dy:g}) m would hit "
-                                  "an obstacle")
+                                  "an obstacle", data=unreachable_data("relative", gx, gy, self._named_near(*hit)))
             waypoints = [(start.x, start.y), (gx, gy)]
         else:
             try:
                 waypoints = self._plan_with_final_approach(start, gx, gy)
             except PlanningError as e:
                 where = f" ({goal.marker})" if goal.marker else ""
-                raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}") from None
+                raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}",
+                                  data=unreachable_data("pose", gx, gy, self._named_near(gx, gy),
+                                                        marker=goal.marker)) from None
         return SimWalk(self, waypoints, None if gyaw is None else wrap(gyaw), goal)
 
     def _plan_with_final_approach(self, start: Pose, gx: float, gy: float) -> list[tuple[float, float]]:
@@ -188,21 +204,52 @@ class SimLoco(LocoBackend):
         headings = [facing + math.radians(15.0 * k * sign) for k in range(13) for sign in ((1,) if k == 0 else (1, -1))]
         sides = (goal.lateral, -goal.lateral) if goal.lateral else (0.0,)
         extra = 0.0
+        in_the_way: list[str | None] = []
         while extra <= self.approach_slack + 1e-9:
             wider = ApproachGoal(goal.x, goal.y, goal.standoff + extra, goal.lateral)
             for heading in headings:
                 for side in sides:
                     spot = approach_stand(wider, heading, side)
                     if not self.near_grid.cell_is_free(*self.near_grid.world_to_cell(spot.x, spot.y)):
+                        in_the_way.append(self._name_near(spot.x, spot.y))
                         continue
                     try:
                         self._plan_with_final_approach(start, spot.x, spot.y)
                     except PlanningError:
+                        in_the_way.append(self._name_near(spot.x, spot.y))
                         continue
                     return MapGoal(spot.x, spot.y, wrap(heading))
             extra += 0.05
-        raise DaemonError("unreachable", f"no free spot to stand within {goal.standoff + self.approach_slack:.2f} m "
-                          f"of ({goal.x:.2f}, {goal.y:.2f})")
+        within = goal.standoff + self.approach_slack
+        raise DaemonError("unreachable", f"no free spot to stand within {within:.2f} m "
+                          f"of ({goal.x:.2f}, {goal.y:.2f})",
+                          data=unreachable_data("reach", goal.x, goal.y, ranked(in_the_way), within=within))
+
+    def view_pose(self, goal: ViewGoal) -> MapGoal:
+        """A spot the robot can walk to from which the head camera sees the point with nothing
+        on the map in between, nearest on foot (:func:`stuart_bt.maps.viewpoints.find_viewpoint`);
+        here, or a turn in place, when that already sees it."""
+        start = Pose.from_dict(self.refresh()["base"])
+        try:
+            spot = find_viewpoint(self.space, self.camera, (goal.x, goal.y, goal.z), (start.x, start.y, start.yaw))
+        except NoViewpoint as e:
+            raise DaemonError("unreachable", e.reason, data=unreachable_data(
+                "view", goal.x, goal.y, e.blocked_by, z=goal.z, spots=e.counts)) from None
+        return MapGoal(spot.x, spot.y, wrap(spot.yaw))
+
+    @property
+    def camera(self) -> CameraView:
+        from stuart_bt.perception.projection import head_camera_view
+
+        return head_camera_view(far=self.view_range)
+
+    def _name_near(self, x: float, y: float) -> str | None:
+        """The named furniture whose margin a spot at (x, y) is in (the robot's radius and a cell)."""
+        return self.space.name_at(x, y, self.space.dock + self.grid.resolution)
+
+    def _named_near(self, x: float, y: float) -> list[str]:
+        name = self._name_near(x, y)
+        return [name] if name else []
 
     def turn(self, angle: float) -> Activity:
         start = Pose.from_dict(self.refresh()["base"])

@@ -40,9 +40,10 @@ from stuart_bt.core.clock import Clock
 from stuart_bt.core.world import Pose
 from stuart_bt.daemon import args as a
 from stuart_bt.daemon.backend import Activity, DaemonError, Done, Handler, Progress
+from stuart_bt.maps.furniture import Furniture, FurnitureFileError, furniture_for_map
 from stuart_bt.skills import vendor
 
-from .backend import LocoBackend, MapGoal, NavigateGoal, RelativeGoal, goal_pose
+from .backend import LocoBackend, MapGoal, NavigateGoal, RelativeGoal, goal_pose, unreachable_data
 from .dry import wrap
 
 ODOM_TOPIC = "rt/unitree/slam_relocation/odom"
@@ -309,10 +310,15 @@ class UnitreeLoco(LocoBackend):
         self._start_pose = vendor.startup_option(lambda: a.pose(options, "start_pose", where)) \
             if "start_pose" in options else Pose()
         self.grid = None
+        self.furniture = Furniture()
         if options.get("nav_map"):
             from stuart_bt.maps.files import read_map
 
             self.grid = read_map(str(options["nav_map"]), float(options.get("robot_radius", 0.3))).planning_grid()
+            try:
+                self.furniture = furniture_for_map(str(options["nav_map"]))
+            except FurnitureFileError as e:
+                raise vendor.StartupError(str(e)) from None
         self._pose: Pose | None = None
         self._pose_wall = 0.0
         self._arrivals: list[tuple[bool, float]] = []  # (is_arrived, wall time heard)
@@ -446,7 +452,10 @@ class UnitreeLoco(LocoBackend):
                 route = plan(self.grid, (start.x, start.y), (gx, gy))
             except PlanningError as e:
                 where = f" ({goal.marker})" if goal.marker else ""
-                raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}") from None
+                named = self.furniture.at(gx, gy, within=0.35)  # the goal is in (or at) furniture
+                raise DaemonError("unreachable", f"cannot plan to ({gx:.2f}, {gy:.2f}){where}: {e}",
+                                  data=unreachable_data("pose", gx, gy, [named] if named else [],
+                                                        marker=goal.marker)) from None
         points = split_legs(route, self.max_leg)
         legs: list[tuple[float, float, float]] = []
         previous = (start.x, start.y)

@@ -126,7 +126,7 @@ class Search(Activity):
                 return Done(self._result())
             saw = ", ".join(sorted(self.labels_seen)) or "nothing"
             raise DaemonError("not_found", f"no {self.label} in view after {self.frames} frames (saw: {saw})",
-                              data={"memory": self.backend.memory()})
+                              data={"memory": self.backend.memory(), "saw": sorted(self.labels_seen)})
         return Progress({"frame": self.frames, "seen": self.seen, "detections": self.backend.last})
 
     def _result(self) -> dict[str, Any]:

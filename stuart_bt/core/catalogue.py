@@ -120,6 +120,27 @@ LEAVES: dict[str, LeafSpec] = {
             default_timeout=180.0,
         ),
         LeafSpec(
+            "view",
+            "Walk to where the head camera sees a remembered object (or a map point): in its picture "
+            "and range, with nothing on the map in between. It stays, or only turns, when it sees "
+            "it from where it stands; an object in the middle of a table is looked at from its edge, "
+            "with no arm's reach needed.",
+            (
+                Param("object", "string", "Object label; its position is read from the world state when "
+                      "the leaf starts.", required=True),
+                Param("x", "number", "Map x of the point to look at, metres.", required=True),
+                Param("y", "number", "Map y of the point to look at, metres.", required=True),
+                Param("z", "number", "Height of the point above the floor, metres.", default=0.0),
+                Param("tolerance", "number", "Arrival tolerance in metres.", default=0.10),
+                Param("yaw_tolerance", "angle", "Arrival heading tolerance in radians.", default=0.0873),
+            ),
+            family="loco",
+            command="navigate",
+            shorthand="object",
+            one_of=(("object",), ("x", "y", "z")),
+            default_timeout=180.0,
+        ),
+        LeafSpec(
             "turn",
             "Turn in place by an angle (radians, counter-clockwise positive) or by degrees.",
             (

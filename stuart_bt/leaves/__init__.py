@@ -10,13 +10,13 @@ from .base import Leaf, LeafFailure, RunContext, SkillLeaf, failure_code
 from .builtin import Condition, Log, Set, Stop, Wait
 from .expression import Gesture, Speak
 from .manipulation import Pick, Release
-from .motion import Approach, Navigate, Turn
+from .motion import Approach, Navigate, Turn, View
 from .vision import Find, Observe
 
 LEAF_CLASSES: dict[str, type[Leaf]] = {
     cls.kind: cls
-    for cls in (Navigate, Approach, Turn, Pick, Release, Find, Observe, Speak, Gesture, Wait, Stop, Condition, Set,
-                Log)
+    for cls in (Navigate, Approach, View, Turn, Pick, Release, Find, Observe, Speak, Gesture, Wait, Stop, Condition,
+                Set, Log)
 }
 
 

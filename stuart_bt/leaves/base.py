@@ -88,6 +88,7 @@ class Leaf(py_trees.behaviour.Behaviour):
         self.leaf_spec: LeafSpec = LEAVES[spec.kind]
         self.failure_reason = ""
         self.failure_code: str | None = None  # the daemon's error code, when a daemon failed the leaf
+        self.failure_detail: dict[str, Any] = {}  # the data the daemon's error carried (what blocked, where)
         self.result: dict[str, Any] = {}
         self._started_at = 0.0
         self._early: Status | None = None
@@ -120,6 +121,7 @@ class Leaf(py_trees.behaviour.Behaviour):
     def initialise(self) -> None:
         self.failure_reason = ""
         self.failure_code = None
+        self.failure_detail = {}
         self.result = {}
         self._early = None
         self._started_at = self.ctx.clock.now()
@@ -171,6 +173,8 @@ class Leaf(py_trees.behaviour.Behaviour):
         bb = self.ctx.blackboard
         entry = {"status": outcome, "reason": self.failure_reason or None, "code": self.failure_code,
                  "result": self.result or None}
+        detail = {"detail": self.failure_detail} if self.failure_detail else {}  # only when an error carried data
+        entry.update(detail)
         outcomes = bb.get("outcomes", None)
         if outcomes is None:
             outcomes = {}
@@ -180,7 +184,7 @@ class Leaf(py_trees.behaviour.Behaviour):
             bb.set("last_failure", {"path": self.spec_path, "reason": self.failure_reason})
         self.ctx.events.publish(
             "leaf", self.spec_path, skill=self.spec.kind, outcome=outcome, reason=self.failure_reason or None,
-            result=self.result or None,
+            result=self.result or None, **detail,
         )
 
 
@@ -230,6 +234,7 @@ class SkillLeaf(Leaf):
         if request.status == "error":
             code = self.failure_code = request.error_code or "error"
             self.failure_reason = f"{code}: {request.reason}" if request.reason else code
+            self.failure_detail = dict(request.result or {})
             return Status.FAILURE
         if request.status == "done":
             self.result = dict(request.result or {})

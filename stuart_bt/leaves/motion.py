@@ -55,17 +55,34 @@ class Approach(Navigate):
     kind = "approach"
 
     def command(self) -> tuple[str, dict[str, Any]]:
+        x, y, _ = self.point()
+        spot = {"x": x, "y": y, "standoff": float(self.param("standoff")), "lateral": float(self.param("lateral"))}
+        return "navigate", {"approach": spot, "tolerance": float(self.param("tolerance")),
+                            "yaw_tolerance": float(self.param("yaw_tolerance"))}
+
+    def point(self) -> tuple[float, float, float]:
+        """The point to walk up to: the remembered object's position now, or the given one."""
         if self.has("object"):
             label = str(self.param("object"))
             objects = self.ctx.blackboard.world.objects
             if label not in objects:
                 raise LeafFailure(f"unknown_object: no remembered position for {label!r}; find it first"
                                   f"{did_you_mean(label, objects)}")
-            x, y = objects[label].x, objects[label].y
-        else:
-            x, y = float(self.param("x")), float(self.param("y"))
-        spot = {"x": x, "y": y, "standoff": float(self.param("standoff")), "lateral": float(self.param("lateral"))}
-        return "navigate", {"approach": spot, "tolerance": float(self.param("tolerance")),
+            return objects[label].x, objects[label].y, objects[label].z
+        return float(self.param("x")), float(self.param("y")), float(self.param("z", 0.0))
+
+
+class View(Approach):
+    """Walk to where the head camera sees a remembered object or a point (the daemon chooses the
+    spot: in the camera's picture and range, nothing on its map in the way), or stay when it
+    sees it from here. Finding needs sight, not reach: a cup in the middle of a table is looked
+    at from the table's edge, where no arm would reach it."""
+
+    kind = "view"
+
+    def command(self) -> tuple[str, dict[str, Any]]:
+        x, y, z = self.point()
+        return "navigate", {"view": {"x": x, "y": y, "z": z}, "tolerance": float(self.param("tolerance")),
                             "yaw_tolerance": float(self.param("yaw_tolerance"))}
 
 

@@ -27,8 +27,9 @@ def map_image(grid: OccupancyGrid) -> np.ndarray:
     return np.flipud(pixels)
 
 
-def write_map(grid: OccupancyGrid, stem: str | Path) -> tuple[Path, Path]:
-    """Write ``stem.png`` and ``stem.yaml`` (map_server format, plus our ``inflation``)."""
+def write_map(grid: OccupancyGrid, stem: str | Path, furniture: str | None = None) -> tuple[Path, Path]:
+    """Write ``stem.png`` and ``stem.yaml`` (map_server format, plus our ``inflation`` and, when
+    given, ``furniture``: the file next to it that names the obstacles, :mod:`.furniture`)."""
     from PIL import Image
 
     stem = Path(stem)
@@ -43,7 +44,8 @@ def write_map(grid: OccupancyGrid, stem: str | Path) -> tuple[Path, Path]:
         "negate: 0\n"
         "occupied_thresh: 0.65\n"
         "free_thresh: 0.196\n"
-        f"inflation: {grid.inflation:g}  # robot radius the map is planned with (not a map_server key)\n",
+        f"inflation: {grid.inflation:g}  # robot radius the map is planned with (not a map_server key)\n"
+        + (f"furniture: {furniture}  # names of the obstacles (not a map_server key)\n" if furniture else ""),
         encoding="utf-8")
     return png, yaml_path
 

@@ -64,12 +64,18 @@ class Grid:
 
     def segment_free(self, a: tuple[float, float], b: tuple[float, float]) -> bool:
         """Every cell a straight segment passes is free (sampled at a quarter cell)."""
+        return self.first_blocked(a, b) is None
+
+    def first_blocked(self, a: tuple[float, float], b: tuple[float, float]) -> tuple[float, float] | None:
+        """The first point from ``a`` towards ``b`` in a blocked cell (sampled at a quarter
+        cell), or None when the whole segment is free: where a straight move would hit."""
         steps = max(1, int(math.hypot(b[0] - a[0], b[1] - a[1]) / (self.resolution * 0.25)))
         for i in range(steps + 1):
             t = i / steps
-            if not self.cell_is_free(*self.world_to_cell(a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t)):
-                return False
-        return True
+            x, y = a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t
+            if not self.cell_is_free(*self.world_to_cell(x, y)):
+                return x, y
+        return None
 
 
 @dataclass

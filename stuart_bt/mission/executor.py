@@ -15,7 +15,9 @@ threads) and returns at once; a worker thread runs the queue:
   mission's remaining tasks from the current world state;
 - a failed leaf is repaired by re-planning the lowest failed compound task that still plans from
   the current state (an object that was not where memory said is forgotten first, so the robot
-  looks for it again), at most ``max_repairs`` times; then the robot says why, in one sentence;
+  looks for it again), at most ``max_repairs`` times, and not again when the repair failed for
+  the very reason it was meant to mend; then the robot says why, in one sentence of words
+  people use (:mod:`.failures`), while the mission's ``reason`` keeps the technical one;
 - an unknown place or object is said ("I don't know where the garage is") and nothing moves;
 - conversation goes to a :class:`~.commands.Conversation` on a separate thread; its reply is
   spoken.
@@ -27,8 +29,8 @@ event stream and report as the missions. Events: ``utterance``, ``reply`` and ``
 The work is split by job: :mod:`.queue` (the jobs, the worker thread; stop, continue and
 replace), :mod:`.understanding` (what the tasks said refer to), :mod:`.replies` (conversation),
 :mod:`.proposals` (a model's task proposal, run after a yes), :mod:`.repair` (planning what is
-left, repairs), :mod:`.speech` (sentences about plans and failures) and :mod:`.running` (one tree
-on the daemons). :class:`MissionExecutor` wires them together and runs each mission from its
+left, repairs), :mod:`.speech` and :mod:`.failures` (sentences about plans and failures) and
+:mod:`.running` (one tree on the daemons). :class:`MissionExecutor` wires them together and runs each mission from its
 plan to its end.
 """
 
@@ -43,7 +45,7 @@ from typing import Any, Self
 
 from ..conversation.reply import Conversation
 from ..htn.domain import Domain
-from ..htn.state import lab_world
+from ..htn.state import lab_world, spoken_name
 from ..language import Parser, Resolver, TaskIntent
 from ..run.executor import RunOutcome
 from ..run.session import RunOptions, Session
@@ -51,12 +53,13 @@ from ..tasks import project_domain
 from ..tree.spec import TreeSpec
 from .attention import Attention
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, hearing_doubts, interpret
+from .failures import Failure, Words
 from .proposals import Offers
 from .queue import Job, JobQueue, Look, Mission, Say
 from .repair import Replanner, calls_done
 from .replies import Replies
-from .running import TreeRunner, all_families_tree, failure_reason, leaf_outcome, say_tree
-from .speech import WATCHDOG_SENTENCE, could_not
+from .running import TreeRunner, all_families_tree, failure_facts, leaf_outcome, say_tree
+from .speech import WATCHDOG_SENTENCE, could_not, said_could_not
 from .understanding import resolve, said
 
 SESSION_HISTORY = 5000  # events a mission session keeps for its report: it may run all day
@@ -271,6 +274,7 @@ class MissionExecutor:
             jobs.finish(m, "failed", self.session.lost)
             return
         compiled, index, unplannable = self.replanner.plan_remaining(m)
+        previous: tuple[str | None, str] | None = None  # the failure (skill, reason) the last repair was for
         while compiled is not None:
             outcome, succeeded, failed_path = self._run_tree(compiled.spec, m)
             m.done = max(m.done, calls_done(compiled, index, succeeded))
@@ -285,7 +289,8 @@ class MissionExecutor:
             if outcome.status == "STOPPED" or m.cancelled == "stopped":
                 jobs.hold(m, outcome.ticks, outcome.reason)
                 return
-            reason = failure_reason(self.session, failed_path, outcome)
+            failure = failure_facts(self.session, compiled.spec, failed_path, outcome)
+            reason = failure.reason
             code = leaf_outcome(self.session, failed_path).get("code")
             if code == "watchdog":
                 # this process froze and a daemon stopped the robot: it moves again only when told to
@@ -293,13 +298,15 @@ class MissionExecutor:
                 if jobs.halted is m:
                     self._say(WATCHDOG_SENTENCE)
                 return
-            if m.repairs >= self.options.max_repairs or failed_path is None:
-                self._explain_failure(m, reason)
+            again = (failure.skill, reason) == previous
+            if m.repairs >= self.options.max_repairs or failed_path is None or again:
+                self._explain_failure(m, failure)  # a repair that met its own failure again would only repeat it
                 return
             m.repairs += 1
+            previous = (failure.skill, reason)
             compiled, index = self.replanner.repair(m, compiled, index, failed_path, code)
             if compiled is None:
-                self._explain_failure(m, reason)
+                self._explain_failure(m, failure)
                 return
             self.events.publish("mission", id=m.id, phase="repaired", failed=failed_path, reason=reason,
                                 repairs=m.repairs, tasks=[compiled.tasks[p].call for p in compiled.top])
@@ -309,7 +316,11 @@ class MissionExecutor:
             return
         jobs.finish(m, "succeeded", None)
 
-    def _explain_failure(self, m: Mission, reason: str) -> None:
-        sentence = could_not(m.texts, m.done, reason)
-        self._say(sentence)
-        self.jobs.finish(m, "failed", sentence)
+    def _explain_failure(self, m: Mission, failure: Failure) -> None:
+        """Say what went wrong in words people use; the mission's reason keeps the technical
+        sentence, and ``said`` and ``failure`` (the facts) are added next to it."""
+        places = {name: spoken_name(marker.label) for name, marker in self.world.markers.items()}
+        said = said_could_not(m.texts, m.done, failure, Words(places=places, held=self.world.held))
+        m.said, m.failure = said, failure.to_dict()
+        self._say(said)
+        self.jobs.finish(m, "failed", could_not(m.texts, m.done, failure.reason))

@@ -39,15 +39,22 @@ class Mission:
     done: int = 0  # calls finished
     repairs: int = 0
     resumed: bool = False
-    reason: str | None = None
+    reason: str | None = None  # technical: the failed leaf's own reason, in the report as it always was
+    said: str | None = None  # what the robot said about a failure, in words people use
+    failure: dict[str, Any] | None = None  # the failure's facts: code, skill, object or place, blocked_by
     cancelled: str | None = None  # "stopped" | "replaced": asked to end while running
     stop_tick: int | None = None  # executor tick when the stop was asked for
     halt_tick: int | None = None  # executor tick count when it halted
     resume_requested: bool = False  # "continue" came while its stop was still under way
 
     def to_dict(self) -> dict[str, Any]:
-        return {"id": self.id, "utterance": self.utterance, "tasks": [str(c) for c in self.calls],
-                "status": self.status, "done": self.done, "repairs": self.repairs, "reason": self.reason}
+        out = {"id": self.id, "utterance": self.utterance, "tasks": [str(c) for c in self.calls],
+               "status": self.status, "done": self.done, "repairs": self.repairs, "reason": self.reason}
+        return {**out, **self.explained()}
+
+    def explained(self) -> dict[str, Any]:
+        """``said`` and ``failure`` when the mission failed and the robot said why (else nothing)."""
+        return {k: v for k, v in (("said", self.said), ("failure", self.failure)) if v is not None}
 
 
 @dataclass
@@ -258,4 +265,4 @@ class JobQueue:
         m.status, m.reason = status, reason
         self.events.publish("mission", id=m.id, phase="stopped" if status == "stopped" else
                             "replaced" if status == "replaced" else "finished", status=status, reason=reason,
-                            repairs=m.repairs)
+                            repairs=m.repairs, **m.explained())

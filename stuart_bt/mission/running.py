@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 from py_trees.common import Status
 
 from ..tree.spec import Location, NodeSpec, TreeSpec
+from .failures import Failure
 
 if TYPE_CHECKING:
     from ..run.executor import RunOutcome
@@ -62,6 +63,15 @@ def leaf_outcome(session: Session, path: str | None) -> dict[str, Any]:
 
 def failure_reason(session: Session, path: str | None, outcome: RunOutcome) -> str:
     return leaf_outcome(session, path).get("reason") or outcome.reason or "something went wrong"
+
+
+def failure_facts(session: Session, spec: TreeSpec, path: str | None, outcome: RunOutcome) -> Failure:
+    """The failed leaf's facts, for saying what went wrong in words: its reason and code, its
+    kind and parameters (which object, which place) and the data its daemon's error carried."""
+    entry = leaf_outcome(session, path)
+    node = spec.find(path) if path else None
+    return Failure(failure_reason(session, path, outcome), entry.get("code"), node.kind if node else None,
+                   dict(node.params) if node else {}, dict(entry.get("detail") or {}))
 
 
 def failed_leaf(root: Any) -> str | None:

@@ -2,8 +2,10 @@
 
 A task that cannot be planned is said with the planner's first rejection of it in words ("Sorry,
 I cannot wave: my hands are full."); a mission that failed after its repairs with the failed
-leaf's reason ("Sorry, I could not pick up the bottle: ..."). Only the sentences are made here;
-the executor speaks them through a speak leaf.
+leaf's facts in words (:mod:`.failures`: "Sorry, I could not pick up the apple: I can't get close
+enough to it - the kitchen table is in the way."). The technical sentence with the leaf's own
+reason (:func:`could_not`) stays the mission's ``reason`` in the report and events. Only the
+sentences are made here; the executor speaks them through a speak leaf.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from typing import Any
 from ..htn import PlanningFailed
 from ..htn.values import TaskCall
 from ..leaves import failure_code
+from .failures import Failure, Words, in_words
 
 WATCHDOG_SENTENCE = "I stopped: I lost touch with my controller for a moment. Say continue when it is safe to go on."
 
@@ -32,11 +35,21 @@ def cannot(text: str, call: TaskCall, error: Exception) -> str:
 
 
 def could_not(texts: list[str], done: int, reason: str) -> str:
-    """One spoken sentence for a mission that failed at its call ``done``, for ``reason``."""
-    idx = min(done, len(texts) - 1)
-    what = texts[idx] if texts else "do that"
+    """The technical sentence for a mission that failed at its call ``done``, for ``reason``: the
+    mission's ``reason`` in the report and events (what is said is :func:`said_could_not`)."""
+    what = _asked(texts, done)
     detail = reason.split(": ", 1)[1] if failure_code(reason) else reason
     return f"Sorry, I could not {clause(what)}: {detail.rstrip('.')}."
+
+
+def said_could_not(texts: list[str], done: int, failure: Failure, words: Words) -> str:
+    """What the robot says when a mission failed at its call ``done``: the failure in words."""
+    what = _asked(texts, done)
+    return f"Sorry, I could not {clause(what)}: {in_words(failure, Words(what, words.places, words.held))}."
+
+
+def _asked(texts: list[str], done: int) -> str:
+    return texts[min(done, len(texts) - 1)] if texts else "do that"
 
 
 def why(failure: Any, task: str) -> str | None:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.world import Pose
+from ..maps.viewpoints import CameraView
 from ..sim.robot import description as desc
 from .frames import Intrinsics
 
@@ -130,3 +131,14 @@ def to_centre(surface: np.ndarray, mount: CameraMount, radius: float) -> np.ndar
     out = surface.copy()
     out[:2] += away / norm * radius
     return out
+
+
+def head_camera_view(far: float = 2.0, margin: float = 0.8) -> CameraView:
+    """The head camera as the loco daemon needs it to choose where to look from: the simulated
+    G1's mount, standing, and the D435's narrower picture (4:3, 640x480: ~54 x 42 degrees), so a
+    spot chosen for it sees the point in either of the modes the vision daemon may use."""
+    half_v = math.radians(desc.HEAD_CAMERA_FOVY) / 2
+    half_h = math.atan(math.tan(half_v) * 4 / 3)
+    x, y, z = desc.HEAD_CAMERA_XYZ
+    return CameraView(height=TORSO_HEIGHT + z, ahead=x, left=y, pitch=desc.HEAD_CAMERA_PITCH,
+                      hfov=2 * half_h, vfov=2 * half_v, far=far, margin=margin)

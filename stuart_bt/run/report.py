@@ -57,7 +57,8 @@ def build_report(events: Iterable[Event], **summary: Any) -> dict[str, Any]:
             _collect(record, result, e.t, visited, spoken, gestures, picks, releases, found)
         elif e.kind == "leaf" and d.get("outcome") == "FAILURE" and d.get("skill") != "condition":
             # a false condition is an answer (control flow), not a failure
-            failures.append({"path": e.path, "skill": d.get("skill"), "reason": d.get("reason"), "t": e.t})
+            failures.append({"path": e.path, "skill": d.get("skill"), "reason": d.get("reason"), "t": e.t,
+                             **({"detail": d["detail"]} if d.get("detail") else {})})
         elif e.kind == "warning":
             warnings.append(str(d.get("message")))
         elif e.kind == "pose":
