@@ -46,3 +46,21 @@ def test_coverage_sorts_every_word_of_the_command() -> None:
     cov = result.coverage
     assert "bottle" in cov.used and "thirsty" in cov.talk and cov.unused == ()
     assert result.to_dict()["coverage"]["talk"] == list(cov.talk)
+
+
+@pytest.mark.parametrize("said", ["pick up the cup with your teeth", "hop to the workbench on one leg",
+                                  "go to the kitchen and stay there until the professor arrives"])
+def test_how_or_until_when_is_not_a_phrase_saying_which_so_it_is_doubt(said: str) -> None:
+    assert "unused" in reasons(said)
+
+
+def test_a_letter_said_long_is_the_letter_once() -> None:
+    result = PARSER.parse("Hey Stuart, pick up the apple pleeease!")
+    assert [i.target for i in result.intents] == ["apple"] and not result.doubt
+    assert [i.action for i in PARSER.parse("Hey Stuart, stooooop").intents] == ["stop"]
+
+
+def test_list_labels_are_not_targets() -> None:
+    result = PARSER.parse("Hey Stuart, step one, go to station 2; step two, find the cup; step three, wave.")
+    assert [(i.action, i.target) for i in result.intents] == [
+        ("navigate_to_marker", "station 2"), ("find", "cup"), ("gesture", "wave")]

@@ -7,6 +7,8 @@ conditional or a retraction holds, it gives no intent that moves the robot.
 
 from __future__ import annotations
 
+from typing import Any
+
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -97,3 +99,15 @@ def test_a_correction_that_nothing_replaces_takes_the_command_back() -> None:
     assert PARSER.parse("Hey Stuart, go to the kitchen. No.").intents == []
     assert [i.target for i in PARSER.parse("Hey Stuart, go to the kitchen, no, the bathroom").intents] == ["bathroom"]
     assert [i.target for i in PARSER.parse("Hey Stuart, go to the kitchen. no need to hurry").intents] == ["kitchen"]
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(st.sampled_from(COMMANDS), st.sampled_from([
+    lambda c: f"back when you first arrived, you could not {c}.",
+    lambda c: f"why did the robot {c}? To {c}!",
+    lambda c: f"could you {c}, actually, don't worry, I'll do it.",
+    lambda c: f"{c}. Oh, no worries, forget it.",
+]))
+def test_memories_punchlines_and_never_minds_move_nothing(command: str, frame: Any) -> None:
+    said = "Hey Stuart, " + frame(command)
+    assert [i.action for i in PARSER.parse(said).intents if i.action != "stop"] == [], said  # a stop moves nothing

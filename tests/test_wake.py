@@ -124,3 +124,12 @@ def test_no_letters_in_the_name_is_refused() -> None:
 def test_long_and_odd_input_is_fine(wake: WakeFilter) -> None:
     assert wake.match("hey stuart " + "go " * 100_000).woke
     assert not wake.match("\x00\ufffd" * 1000).woke
+
+
+def test_a_term_of_address_after_a_bare_name_belongs_to_it():
+    from stuart_bt.language.wake import WakeFilter
+
+    wake = WakeFilter("Stuart")
+    match = wake.match("Stuart mate, do us a favour and find my cup.")
+    assert match.woke and match.command == "do us a favour and find my cup."
+    assert not wake.match("Stuart mate is a nice name").woke

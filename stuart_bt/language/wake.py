@@ -223,6 +223,9 @@ class WakeFilter:
         rest = utterance[end:]
         if not greeted:
             after = rest.lstrip(" \t")
+            term = _ADDRESS.match(after)  # "Stuart mate, ...": a term of address belongs to the name
+            if term and term.end() < len(after) and after[term.end()] in _PAUSE:
+                rest, after = after[term.end():], after[term.end():]
             if not self.bare_name or (after and after[0] not in _PAUSE):
                 return WakeMatch(False)
         heard = " ".join(toks[i:i + k])
@@ -272,6 +275,11 @@ class WakeFilter:
                 if d == 0.0:
                     break  # nothing longer can beat an exact sound match
         return best
+
+
+# terms of address said right after the name, before the pause ("Stuart mate, ...", "Stuart, buddy")
+_ADDRESS = re.compile(r"(?:mate|buddy|pal|my friend|old chap|old friend|my man|dear|bro|dude|sir|man)(?=\W)",
+                      re.IGNORECASE)
 
 
 def _sounds_like_hey(word: str) -> bool:

@@ -26,6 +26,7 @@ from .lexicon import (
     GESTURE_VERBS,
     GESTURES_BY_FIRST,
     GUIDE_VERBS,
+    HARD_STOPS,
     LEFT,
     LIGHT_VERBS,
     MODALS,
@@ -324,8 +325,8 @@ def read_topic(s: ParseState, i: int) -> bool:
 def read_connector(s: ParseState, i: int) -> tuple[str, int] | None:
     """A connector at ``i``: ("next", end), ("reorder", end) for "but first", ("or", end)."""
     t = s.toks[i]
-    if t == "to" and i + 1 < s.n and s.toks[i + 1] in ALL_VERBS:
-        return "next", i + 1
+    if t == "to" and i + 1 < s.n and s.toks[i + 1] in ALL_VERBS and i > 0 and s.toks[i - 1] not in HARD_STOPS:
+        return "next", i + 1  # "go to the kitchen to get a drink"; "... ? To grab a byte!" opens no command
     if t == "or":
         return "or", i + 1
     if t not in CONNECTORS_BY_FIRST:

@@ -35,19 +35,24 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
+from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
 from .forms import question_tags, retraction_at
 from .lexicon import (
     ALL_VERBS,
+    BODY_PARTS,
     BOUNDARY,
+    CONDITIONS,
     COPULA,
     CORRECTIONS_BY_FIRST,
     HARD_STOPS,
+    LIST_LABELS,
     MODALS,
     NP_STOP,
     PAST,
     RETRACTIONS_BY_FIRST,
     SUBORDINATORS,
+    TIME_OPENERS,
 )
 from .nouns import read_arrival
 from .state import Defaults, ParseState, Spec, may_end, skip_rest
@@ -154,10 +159,13 @@ class _CommandReader:
             self.dead = False
             self.i += 1
             return True
-        if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self.i + 1 < s.n and (
-                retraction_at(s, self.i + 1) or s.phrase_at(self.i + 1, CORRECTIONS_BY_FIRST)):
+        if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self._corrects_after(self.i + 1):
             self._mark(self.i, self.i + 1, USED)  # "actually, scratch that": the word before a correction
             self.i += 1
+            return True
+        if t in LIST_LABELS and word_value(s.at(self.i + 1)) is not None and s.at(self.i + 2) == ",":
+            self._mark(self.i, self.i + 3, USED)  # "item two, locate the cup": a label, not a second place
+            self.i += 3
             return True
         taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) and (
             not self.dead) else 0
@@ -184,6 +192,13 @@ class _CommandReader:
         elif kind == "reorder" and self.out:
             self.reorder_at = len(self.out) - _last_clause_len(self.out)
         return True
+
+    def _corrects_after(self, i: int) -> bool:
+        """A correction or a retraction at ``i``, or after a comma there ("actually, don't worry")."""
+        s = self.s
+        if s.at(i) == ",":
+            i += 1
+        return i < s.n and bool(retraction_at(s, i) or s.phrase_at(i, CORRECTIONS_BY_FIRST))
 
     def _forget_all(self) -> None:
         self.s.last_action = ""  # nothing for an ellipsis to continue ("..., I'm joking, obviously")
@@ -250,7 +265,8 @@ class _CommandReader:
             self._no_clause(t, False)
             self._mark(start, self.i, TALK)
             return
-        if not subordinate and start in self.tokens.gerunds and self._opens_sentence(start):
+        if not subordinate and self._opens_sentence(start) and (
+                start in self.tokens.gerunds or (t, s.at(start + 1)) in TIME_OPENERS):
             self.dead = True  # "walking to the kitchen takes ages": the ing-form is the subject of a statement
             self._no_clause(t, False)
             self._mark(start, self.i, TALK)
@@ -286,11 +302,11 @@ class _CommandReader:
         self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
-        self._mark(start, j, USED)
+        self._mark(start, _condition_at(self.toks, start, j), USED)  # "... until the professor arrives": unused
         self._remember(specs)
         self.i = self.clause_end = skip_rest(s, j)
-        if specs[-1][1] and s.at(j) in QUALIFIERS and not any(w in TIMES for w in self.toks[j:self.i]):
-            self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step ("in an hour" is)
+        if specs[-1][1] and s.at(j) in QUALIFIERS and _says_which(self.toks[j:self.i]):
+            self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step
 
     def _opens_sentence(self, i: int) -> bool:
         """Whether ``i`` starts a sentence: the start, after . ! ? ;, or after a comma before any command."""
@@ -385,6 +401,21 @@ TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "m
                    "noon", "midnight", "pm"})
 
 USED, TALK = 1, 2  # what a token was to the reader: words a command came from, words of conversation
+
+
+def _condition_at(toks: list[str], start: int, end: int) -> int:
+    """Where a condition starts inside a clause's words ("stay there until ..."), else ``end``:
+    the robot cannot wait for a condition, so its words are never counted as understood."""
+    for k in range(start + 1, end):  # not its first word: "if you could ..." is polite
+        if toks[k] in CONDITIONS:
+            return k
+    return end
+
+
+def _says_which(words: list[str]) -> bool:
+    """A phrase after a target that says which thing or place is meant ("on the counter"), not
+    when ("in an hour") or how ("with your teeth", "on one leg")."""
+    return not any(w in TIMES or w in BODY_PARTS or w == "your" for w in words)
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

@@ -453,6 +453,7 @@ RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("forget", "it"), ("forget", "that"), ("forget", "everything"), ("forget", "all", "that"), ("cancel", "that"),
     ("on", "second", "thought"), ("on", "second", "thoughts"), ("dont", "bother"), ("nah",), ("no", "dont"),
     ("i", "take", "that", "back"), ("belay", "that"), ("as", "you", "were"), ("dont",), ("do", "not"),
+    ("dont", "worry"), ("no", "worries"),
 )
 
 RETRACTIONS_BY_FIRST = by_first(sorted(RETRACTIONS, key=lambda r: (-len(r), r)))
@@ -467,3 +468,14 @@ TAG_AUX = frozenset({"is", "isnt", "are", "arent", "was", "wasnt", "were", "were
                      "would", "wouldnt", "can", "cant", "could", "couldnt", "should", "shouldnt", "shall", "am",
                      "aint", "might", "must"})
 REQUEST_TAGS = frozenset({"will", "wont", "would", "can", "could"})  # "..., will you?" after a command asks
+
+# words that label an item of a spoken list ("item one, go to station 2; item two, ..."), not a place
+LIST_LABELS = frozenset({"item", "step", "point", "task", "number", "part", "stage"})
+
+# a sentence opening with these is about the past, not a command ("back when you first arrived, ...")
+TIME_OPENERS = frozenset({("back", "when"), ("back", "then"), ("back", "in"), ("way", "back")})
+
+# parts of the body: a phrase naming one says how to do a thing ("with your teeth", "on one leg"),
+# which the robot cannot choose, not which thing or place is meant
+BODY_PARTS = frozenset({"hand", "hands", "arm", "arms", "leg", "legs", "foot", "feet", "teeth", "tooth", "head",
+                        "eyes", "mouth", "nose", "knee", "knees", "finger", "fingers", "toes", "elbow", "tongue"})

@@ -87,8 +87,11 @@ def tokenize(text: str) -> Tokens:
     src: list[int] = []
     gerunds: list[int] = []
     last = ""
+    words = pieces  # "pleeease", "stooop": a letter said long is the letter once (spans keep the pieces)
+    if _ELONGATED.search(low):
+        words = [_ELONGATED.sub(r"\1", p) if p.isalpha() else p for p in pieces]
     special = _SPECIAL
-    for k, t in enumerate(pieces):
+    for k, t in enumerate(words):
         if t in special or t == last or "'" in t or t[0] <= "9":
             if "'" in t:
                 t = t.replace("'", "")
@@ -121,5 +124,7 @@ def tokenize(text: str) -> Tokens:
         if len(toks) >= MAX_TOKENS:
             return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds))
     return Tokens(toks, src, pieces, low, None, frozenset(gerunds))
+
+_ELONGATED = re.compile(r"([a-z])\1{2,}")  # no English word has a letter three times in a row
 
 _KEEP_POINTS = str.maketrans({c: " " for c in "\"()[]{}<>*+=/|~^`@#$%:_-–—‐‑“”„«»…•·\t\n\r"})
