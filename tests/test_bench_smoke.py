@@ -35,7 +35,7 @@ EXPECTED = [
     "htn.compound20", "htn.small.fetch", "htn.small.compound20",
     *(f"mission.{figure}.{q}" for figure in ("utterance_to_first_command", "stop_to_all_daemons")
       for q in ("p50", "p99")),
-    "llm.first_token", "llm.reply", "llm.cold_first_token",
+    "llm.first_token", "llm.reply", "llm.cold_first_token", "llm.facts_p99",
     "ros.audio_to_intent.p50", "ros.audio_to_intent.p99",
     *(f"perception.{figure}" for figure in ("position.error_mean", "position.error_max", "pipeline.rate", "render.fps",
                                             "tour.real_time_factor_with_vision")),
