@@ -93,10 +93,6 @@ def test_what_do_you_see_looks_first_and_answers_with_what_is_in_view():
         assert mx.wait_idle(60)
     looks = [c["cmd"] for c in commands if c["family"] == "vision" and c["cmd"] not in ("stop", "shutdown")]
     assert looks == ["look"]
-    [context] = listener.contexts
-    seen = {d["label"]: d for d in context["detections"]}
-    assert set(seen) == {"bottle", "apple"} and seen["bottle"]["where"] == "near the kitchen"
-    assert seen["bottle"]["distance"] == pytest.approx(0.51, abs=0.03)
+    assert listener.contexts == []  # what the robot sees is a fact: answered without the model
     said = [c["args"]["text"] for c in commands if c["family"] == "tts" and c["cmd"] == "say"]
-    seen_line = "You currently see: bottle (0.5 m away, near the kitchen), apple (0.9 m away, near the kitchen)."
-    assert said and said[-1].endswith(seen_line)
+    assert said and said[-1] == "I can see a bottle and an apple."  # nearest first: the bottle is 0.5 m away

@@ -166,7 +166,7 @@ def test_bad_arguments_are_rejected_with_what_is_wrong(wire):
     loco.send({"id": "n2", "cmd": "navigate", "args": {"pose": {"x": 1, "y": 0}, "tolerence": 0.2}})
     assert "unknown argument 'tolerence' (did you mean 'tolerance'?)" in loco.reply("n2")["reason"]
     loco.send({"id": "n3", "cmd": "navigate", "args": {}})
-    assert loco.reply("n3")["reason"] == "navigate: give exactly one of pose, relative, approach (got none)"
+    assert loco.reply("n3")["reason"] == "navigate: give exactly one of pose, relative, approach, view (got none)"
 
 
 def test_an_unknown_command_is_answered_with_a_suggestion(wire):

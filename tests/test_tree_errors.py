@@ -76,7 +76,7 @@ def test_several_errors_in_one_file_are_all_reported_in_reading_order():
 def test_node_with_no_kind_key():
     assert one_error("root:\n  sequence:\n    - {}\n") == (
         "t.yaml:3:7: t: empty node: expected one kind key (sequence, selector, parallel, retry, repeat, timeout, "
-        "inverter, force_success, force_failure, oneshot, guard, delay, navigate, approach, turn, pick, release, "
+        "inverter, force_success, force_failure, oneshot, guard, delay, navigate, approach, view, turn, pick, release, "
         "gesture, speak, find, observe, wait, stop, condition, set, log, include)")
 
 
