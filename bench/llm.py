@@ -31,11 +31,15 @@ import urllib.request
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .stats import paired_ratio
 
 NAME = "llm"
-GOAL_FIRST_S, GOAL_REPLY_S = 0.5, 2.0
+GOAL_FIRST_S, GOAL_REPLY_S = 0.5, 2.0  # the absolute goals the ratio goals replace (information)
+# In-process over llama_cpp.server on the same messages, same run: each absolute goal over the
+# server's time on the machine that wrote bench/results.json (77.6 ms, 699 ms), rounded down.
+GOALS = {"first_token": Goal(6.4, was=f"<= {GOAL_FIRST_S * 1000:g} ms"),
+         "reply": Goal(2.8, was=f"<= {GOAL_REPLY_S * 1000:g} ms")}
 MAX_TOKENS = 48
 PROMPTS = ["Hello! Who are you?", "Where is the kitchen?", "What happens in the drone cage?",
            "What do you see?", "Who runs this lab?", "Thank you, goodbye!"]
@@ -107,15 +111,14 @@ def run(quick: bool) -> list[Result]:
     note = (f"SmolLM2-135M Q4_1, {len(prompts)} prompts x {rounds} rounds, max_tokens {MAX_TOKENS}, "
             "temperature 0, persona+knowledge prompt; median")
     results = []
-    for figure, samples, goal in (("first_token", first, GOAL_FIRST_S), ("reply", whole, GOAL_REPLY_S)):
+    for figure, samples in (("first_token", first), ("reply", whole)):
         value = statistics.median(samples["local"]) * 1000
         anchor = (Anchor("same messages via llama_cpp.server (OpenAI HTTP, loopback)",
                          statistics.median(samples["server"]) * 1000) if samples["server"] else None)
-        results.append(Result(f"{NAME}.{figure}", value, "ms", anchor, f"<= {goal * 1000:.0f} ms",
-                              value <= goal * 1000,
+        results.append(Result(f"{NAME}.{figure}", value, "ms", anchor, GOALS[figure],
                               note + ("" if anchor else "; anchor null: llama_cpp.server packages absent"),
                               paired_ratio(samples["local"], samples["server"]) if anchor else None))
     warm = statistics.median(first["local"]) * 1000
     results.append(Result(f"{NAME}.cold_first_token", cold * 1000, "ms", Anchor("warm first_token (median)", warm),
-                          None, None, "first question after load, system prompt not yet cached; warm() removes it"))
+                          None, "first question after load, system prompt not yet cached; warm() removes it"))
     return results

@@ -172,9 +172,9 @@ class Daemon:
 
     def _step(self) -> None:
         """Wait for input or for the next thing due, handle it, then write. The write comes last
-        and the wait right after it: the framework, woken by the reply, then finds this process
-        asleep rather than still busy on the same CPU (which made the kernel move one of the two
-        to the other CPU, and every later wake-up cost a cross-CPU interrupt)."""
+        and the wait right after it: the framework, woken by the reply, finds this process asleep
+        rather than still at its bookkeeping beside it (a few µs of every round trip on a 2-vCPU
+        VM, docs/protocol.md "Round trip cost")."""
         for fd, _events in self._poller.poll(self._wait * 1000.0):
             if fd == self._in_fd:
                 self._read_input()
