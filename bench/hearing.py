@@ -9,9 +9,11 @@ map and the object labels as the robot would resolve it, so the figures measure 
 
 Figures, each beside an anchor timed in the same run:
 
-- ``latency.p50`` / ``p99``: end of an utterance's audio -> intents (recognition + parse),
-  goal p50 <= 0.8 s, p99 <= 1.5 s (issue 14); anchor: the same utterances' audio duration
-  (a recogniser that took as long as the speech would be "real time");
+- ``latency.p50`` / ``p99``: end of an utterance's audio -> intents (recognition + parse);
+  anchor: the same recogniser **without** the vocabulary prompt on the same clips, each clip
+  heard both ways back to back (order alternating), so the ratio is what the prompt costs and a
+  machine with a slower CPU moves both. Goals on that ratio (they replaced p50 <= 0.8 s and p99
+  <= 1.5 s of issue 14, which stay as information, as does the audio duration in the note);
 - ``rtf``: recognition seconds per second of audio (median), anchor 1.0 (real time);
 - ``accuracy.clean`` / ``accuracy.snr10``: exact intents from audio, clean and with white noise,
   as the robot would act on them (a reading in doubt, heard with low confidence or with a rival
@@ -20,8 +22,9 @@ Figures, each beside an anchor timed in the same run:
   which is what the prompt buys;
 - ``false_commands``: intents heard in non-command audio (goal 0), anchor the same without prompt;
 - ``barge_in.p99``: a "Hey Stuart, stop" said over the robot's voice -> the tts stop command,
-  from the end of the stop's audio (goal <= 1.0 s); anchor: the silence the segmenter waits for
-  while the robot talks (``barge_in_silence_s``), the wait no recogniser can avoid;
+  from the end of the stop's audio; anchor: the silence the segmenter waits for while the robot
+  talks (``barge_in_silence_s``, a constant), the wait no recogniser can avoid; goal: ratio
+  <= 2.8 (was <= 1.0 s: a deadline, so its anchor is the constant it is made of);
 - ``memory``: resident memory of the hearing process with the model loaded and used, anchor the
   same process before the model was loaded.
 """
@@ -36,13 +39,20 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .stats import percentile
 
 NAME = "hearing"
-GOAL_P50_S, GOAL_P99_S = 0.8, 1.5
+GOAL_P50_S, GOAL_P99_S = 0.8, 1.5  # the absolute goals the ratio goals replace (information)
+# Latency with the vocabulary prompt over latency without, same clips, same run: each absolute goal
+# over the latency without the prompt on the machine that wrote bench/results.json, which that
+# run did not time: its 0.41 / 0.52 s with the prompt over the ratios measured on the same machine
+# kind for issue 16 (1.09 / 1.14), i.e. 0.38 / 0.45 s; rounded down.
+GOAL_P50 = Goal(2.1, was=f"<= {GOAL_P50_S:g} s")
+GOAL_P99 = Goal(3.3, was=f"<= {GOAL_P99_S:g} s")
 GOAL_CLEAN, GOAL_NOISY = 95.0, 90.0
 GOAL_BARGE_P99_S = 1.0
+GOAL_BARGE = Goal(2.8, was=f"<= {GOAL_BARGE_P99_S:g} s")  # 1.0 s over the 0.35 s of silence, rounded down
 SPEEDS = (140, 150, 160, 170, 175, 185)
 
 
@@ -101,26 +111,37 @@ def _meaning(parser: Any, text: str, resolver: Any = None) -> list[tuple[str, st
             for i, r in zip(intents, resolved, strict=True)]
 
 
-def _hear_all(recogniser: Any, clips: list[Any], vocabulary: Any, parser: Any,
-              resolver: Any) -> tuple[list[list], list[float], list[float]]:
-    """(intents per clip, latency s per clip, real-time factor per clip)."""
+Heard = tuple[list[list], list[float], list[float]]  # intents, latency s and real-time factor per clip
+
+
+def _hear_both(recogniser: Any, clips: list[Any], vocabulary: Any, parser: Any, resolver: Any) -> tuple[Heard, Heard]:
+    """Every clip heard with the vocabulary prompt and without, back to back, the order
+    alternating from clip to clip: the two latencies of a clip sit side by side in time."""
+    heard: dict[bool, Heard] = {True: ([], [], []), False: ([], [], [])}
+    for k, clip in enumerate(clips):
+        for prompted in ((True, False) if k % 2 == 0 else (False, True)):
+            meant, latency, rtf = _hear(recogniser, clip, vocabulary if prompted else None, parser, resolver)
+            heard[prompted][0].append(meant)
+            heard[prompted][1].append(latency)
+            heard[prompted][2].append(rtf)
+    return heard[True], heard[False]
+
+
+def _hear(recogniser: Any, clip: Any, vocabulary: Any, parser: Any, resolver: Any) -> tuple[list, float, float]:
+    """(intents, latency s, real-time factor) of one clip."""
     from stuart_bt.hearing.pipeline import is_speech, transcribe
     from stuart_bt.language.readings import choose_reading, rival_reading
     from stuart_bt.mission.commands import MIN_CONFIDENCE
 
-    meant, latency, rtf = [], [], []
-    for clip in clips:
-        heard = transcribe(recogniser, clip, vocabulary)
-        t = heard.transcript
-        readings = t.readings() if is_speech(t) else []
-        chosen = choose_reading(readings, parser, resolver) if readings else 0
-        text = readings[chosen][0] if readings else ""
-        asked = bool(text) and (bool(parser.parse(text).doubt) or t.confidence < MIN_CONFIDENCE
-                                or rival_reading(readings, chosen, parser, resolver) is not None)
-        meant.append([] if asked else _meaning(parser, text, resolver))  # in doubt the robot asks: nothing done
-        latency.append(heard.latency_s)
-        rtf.append(heard.transcript.seconds / max(heard.transcript.audio_s, 1e-6))
-    return meant, latency, rtf
+    heard = transcribe(recogniser, clip, vocabulary)
+    t = heard.transcript
+    readings = t.readings() if is_speech(t) else []
+    chosen = choose_reading(readings, parser, resolver) if readings else 0
+    text = readings[chosen][0] if readings else ""
+    asked = bool(text) and (bool(parser.parse(text).doubt) or t.confidence < MIN_CONFIDENCE
+                            or rival_reading(readings, chosen, parser, resolver) is not None)
+    meant = [] if asked else _meaning(parser, text, resolver)  # in doubt the robot asks: nothing done
+    return meant, heard.latency_s, t.seconds / max(t.audio_s, 1e-6)
 
 
 def _score(truth: list[list], got: list[list], is_command: list[bool]) -> tuple[float, int]:
@@ -156,10 +177,8 @@ def run(quick: bool = False) -> list[Result]:
     with tempfile.TemporaryDirectory(prefix="stuart-bench-hearing-") as tmp:
         clips = _speak_all(texts, Path(tmp))
     noisy = [add_noise(c, 10.0, seed=k) for k, c in enumerate(clips)]
-    got, latency, rtf = _hear_all(recogniser, clips, vocabulary, parser, resolver)
-    got_noisy, _, _ = _hear_all(recogniser, noisy, vocabulary, parser, resolver)
-    bare, _, _ = _hear_all(recogniser, clips, None, parser, resolver)
-    bare_noisy, _, _ = _hear_all(recogniser, noisy, None, parser, resolver)
+    (got, latency, rtf), (bare, bare_latency, _) = _hear_both(recogniser, clips, vocabulary, parser, resolver)
+    (got_noisy, _, _), (bare_noisy, _, _) = _hear_both(recogniser, noisy, vocabulary, parser, resolver)
     rss_after = _rss_mb()
     acc, false = _score(truth, got, is_command)
     acc_noisy, false_noisy = _score(truth, got_noisy, is_command)
@@ -170,27 +189,26 @@ def run(quick: bool = False) -> list[Result]:
     where = f"{len(texts)} utterances ({n_cmd} commands, {n_talk} non-commands), espeak-ng, 6 voices"
     barge = barge_in(recogniser, vocabulary, trials=1 if quick else 10)
     l50, l99 = percentile(latency, 50), percentile(latency, 99)
+    bare_name = "same recogniser, same clips, no vocabulary prompt, heard back to back"
     return [
-        Result(f"{NAME}.latency.p50", l50, "s", Anchor("audio duration of the same utterances (p50)",
-                                                       percentile(audio, 50)),
-               f"<= {GOAL_P50_S:g} s", l50 <= GOAL_P50_S, note=f"end of audio -> intents, clean, {where}"),
-        Result(f"{NAME}.latency.p99", l99, "s", Anchor("audio duration (p99)", percentile(audio, 99)),
-               f"<= {GOAL_P99_S:g} s", l99 <= GOAL_P99_S, note="end of audio -> intents, clean"),
-        Result(f"{NAME}.rtf", statistics.median(rtf), "s/s", Anchor("real time", 1.0),
+        Result(f"{NAME}.latency.p50", l50, "s", Anchor(bare_name, percentile(bare_latency, 50)), GOAL_P50,
+               note=f"end of audio -> intents, clean, {where}; audio duration p50 {percentile(audio, 50):.2f} s"),
+        Result(f"{NAME}.latency.p99", l99, "s", Anchor(bare_name, percentile(bare_latency, 99)), GOAL_P99,
+               note=f"end of audio -> intents, clean; audio duration p99 {percentile(audio, 99):.2f} s"),
+        Result(f"{NAME}.rtf", statistics.median(rtf), "s/s", Anchor("real time", 1.0, timed=False),
                note="recognition seconds per second of audio (median), beam 5, int8, 2 threads"),
         Result(f"{NAME}.accuracy.clean", acc, "% exact", Anchor("same recogniser, no vocabulary prompt", acc_bare),
-               f">= {GOAL_CLEAN:g} %", acc >= GOAL_CLEAN,
+               Bound(GOAL_CLEAN, ">=", "%"),
                note=f"commands whose intents (actions, resolved targets, amounts) were heard exactly; {where}"),
         Result(f"{NAME}.accuracy.snr10", acc_noisy, "% exact",
-               Anchor("same recogniser, no vocabulary prompt", acc_bare_noisy), f">= {GOAL_NOISY:g} %",
-               acc_noisy >= GOAL_NOISY, note="white noise at 10 dB SNR"),
-        Result(f"{NAME}.false_commands", float(false + false_noisy), "intents", None, "0", false + false_noisy == 0,
+               Anchor("same recogniser, no vocabulary prompt", acc_bare_noisy), Bound(GOAL_NOISY, ">=", "%"),
+               note="white noise at 10 dB SNR"),
+        Result(f"{NAME}.false_commands", float(false + false_noisy), "intents", None, Bound(0, "=="),
                note=f"intents heard in the {n_talk} non-commands, clean + 10 dB SNR; no anchor ratio (a count that "
                     f"should be 0): the same recogniser without the vocabulary prompt heard {false_bare} (clean)"),
         Result(f"{NAME}.barge_in.p99", percentile(barge, 99), "s",
-               Anchor("silence the segmenter waits for while the robot talks", SegmenterOptions().barge_in_silence_s),
-               f"<= {GOAL_BARGE_P99_S:g} s",
-               percentile(barge, 99) <= GOAL_BARGE_P99_S,
+               Anchor("silence the segmenter waits for while the robot talks", SegmenterOptions().barge_in_silence_s,
+                      timed=False), GOAL_BARGE,
                note=f"end of a spoken 'Hey Stuart, stop' over the robot's voice -> tts stop command, "
                     f"{len(barge)} trials, dry daemons"),
         Result(f"{NAME}.memory", rss_after, "MB", Anchor("the same process before the model was loaded", rss_before),

@@ -4,7 +4,7 @@ Project domain (tasks/domain.yaml with tasks/hooks.py) from the lab start state 
 (sim/maps/lab_markers.json, skills/objects.json, robot at the entrance): one plan per intent
 and mission, and a compound utterance (``do_all`` of eight intents) that plans to 20 steps. Each
 figure is the median time of the task text read into TaskCalls (``Domain.calls_from_text``) and
-one ``Planner.plan()`` call on them (tree built, every rejection recorded). Goal: <= 5 ms each.
+one ``Planner.plan()`` call on them (tree built, every rejection recorded).
 
 Anchor: GTPyhop 2.0.2 on an equivalent small domain, written twice (YAML for stuart_bt, Python
 functions for GTPyhop): walk to a marker, pick, release, wave, say; ``fetch(obj, place)`` with
@@ -13,8 +13,14 @@ steps) and five fetches in a row (20 steps). Both planners must return the same 
 before timing (no step of these missions leaves the state unchanged: GTPyhop 2.0.2 drops such
 actions from its plans, stuart_bt keeps them). GTPyhop runs its ``iterative_dfs_backtracking``
 strategy (backtracking, as stuart_bt does); its default ``iterative_greedy`` strategy is timed
-too and given in the note. All candidates run interleaved in rounds
-(:func:`bench.stats.interleaved_runs`), collector off; ratios are medians of per-round ratios.
+too and given in the note. GTPyhop has no equivalent of the project domain, so the project
+figures are timed against its 20-step small mission (five fetches): a planner on this machine
+now, which turns "<= 5 ms" into a ratio a machine with slower Python cannot fail alone.
+All candidates run interleaved in rounds (:func:`bench.stats.interleaved_runs`), collector off;
+ratios are medians of per-round ratios.
+
+Goals, on those ratios: each was "<= 5 ms", divided by the anchor's time on the machine that
+wrote bench/results.json (GTPyhop: 0.0849 ms for fetch, 0.3953 ms for five fetches), rounded down.
 """
 
 from __future__ import annotations
@@ -26,11 +32,13 @@ import statistics
 from collections.abc import Callable
 from typing import Any
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .stats import interleaved_runs, paired_ratio
 
 NAME = "htn"
-GOAL_MS = 5.0
+GOAL_MS = 5.0  # the absolute goal the ratio goals replace (information)
+GOALS = {"fetch": Goal(58, was=f"<= {GOAL_MS:g} ms"), "compound20": Goal(12, was=f"<= {GOAL_MS:g} ms")}
+ANCHOR_MISSION = "compound20"  # GTPyhop's mission the project figures are timed against
 MISSIONS = {
     "navigate_to_marker": "navigate_to_marker(kitchen)",
     "move_relative": "move_relative(1.0, 0.5, 0)",
@@ -231,32 +239,36 @@ def _ms(samples: list[float]) -> float:
 
 def run(quick: bool = False) -> list[Result]:
     window, rounds = (0.005, 3) if quick else (0.02, 15)
-    project = interleaved_runs(project_candidates(), window, rounds)
+    project = project_candidates()
     small, missing = small_candidates()
-    small_samples = interleaved_runs(small, window, rounds)
-    goal = f"<= {GOAL_MS:g} ms"
+    samples = interleaved_runs({**project, **small}, window, rounds)  # one set of rounds: ratios pair up
     results: list[Result] = []
-    for name, samples in project.items():
-        value = _ms(samples)
+    gt = f"gtpyhop.iterative_dfs_backtracking.{ANCHOR_MISSION}"
+    for name in project:
         task = COMPOUND_20 if name == "compound20" else MISSIONS[name.split(".", 1)[1]]
-        note = (f"{task} from the lab start state; median of {rounds} rounds; no anchor: GTPyhop has no "
-                "equivalent of the project domain (see htn.small.*)")
-        results.append(Result(f"{NAME}.{name}", value, "ms", None, goal, value <= GOAL_MS, note))
-    for mission, todo in SMALL_MISSIONS.items():
-        ours = small_samples[f"stuart_bt.{mission}"]
-        value = _ms(ours)
-        steps = 4 * len(todo)
-        note = f"small kitchen domain, {steps} steps; median of {rounds} rounds"
-        anchor = None
-        paired = None
+        note = f"{task} from the lab start state; median of {rounds} rounds"
+        anchor, paired = None, None
         if missing is None:
-            dfs = small_samples[f"gtpyhop.iterative_dfs_backtracking.{mission}"]
-            greedy = small_samples[f"gtpyhop.iterative_greedy.{mission}"]
+            anchor = Anchor("GTPyhop 2.0.2 iterative_dfs_backtracking, small domain, five fetches (20 steps), "
+                            "same run", _ms(samples[gt]))
+            paired = paired_ratio(samples[name], samples[gt])
+            note += ("; GTPyhop has no equivalent of the project domain: the anchor is its 20-step small mission, "
+                     "a planner timed on this machine now (see htn.small.*); ratio = median of per-round ratios")
+        else:
+            note += f"; no anchor: {missing}"
+        results.append(Result(f"{NAME}.{name}", _ms(samples[name]), "ms", anchor, GOALS[ANCHOR_MISSION], note, paired))
+    for mission, todo in SMALL_MISSIONS.items():
+        ours = samples[f"stuart_bt.{mission}"]
+        note = f"small kitchen domain, {4 * len(todo)} steps; median of {rounds} rounds"
+        anchor, paired = None, None
+        if missing is None:
+            dfs = samples[f"gtpyhop.iterative_dfs_backtracking.{mission}"]
+            greedy = samples[f"gtpyhop.iterative_greedy.{mission}"]
             anchor = Anchor("GTPyhop 2.0.2 iterative_dfs_backtracking, same domain, same run", _ms(dfs))
             paired = paired_ratio(ours, dfs)
             note += (f"; ratio = median of per-round ratios; GTPyhop's default iterative_greedy: "
                      f"{_ms(greedy):.4f} ms")
         else:
             note += f"; no anchor: {missing}"
-        results.append(Result(f"{NAME}.small.{mission}", value, "ms", anchor, goal, value <= GOAL_MS, note, paired))
+        results.append(Result(f"{NAME}.small.{mission}", _ms(ours), "ms", anchor, GOALS[mission], note, paired))
     return results

@@ -25,7 +25,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .stats import gc_paused, paired_ratio, percentile
 
 NAME = "ik"
@@ -116,15 +116,19 @@ def _figures(t: Tally) -> dict[str, float]:
     }
 
 
-FIGURES = {  # figure: (unit, goal text, goal test)
-    "success_rate": ("%", f">= {GOAL_SUCCESS:g} %", lambda v: v >= GOAL_SUCCESS),
+FIGURES: dict[str, tuple[str, Bound | None]] = {  # figure: (unit, goal on the value)
+    "success_rate": ("%", Bound(GOAL_SUCCESS, ">=", "%")),
     # errors in micrometres: the solvers land far inside a millimetre, and results.json keeps
     # four decimals, which in millimetres would round a real figure to zero
-    "error_median": ("um", f"<= {GOAL_ERROR_MM * 1000:g} um (1 mm)", lambda v: v <= GOAL_ERROR_MM * 1000),
-    "error_max": ("um", f"<= {GOAL_ERROR_MM * 1000:g} um (1 mm)", lambda v: v <= GOAL_ERROR_MM * 1000),
-    "time_median": ("ms", f"<= {GOAL_MEDIAN_MS:g} ms", lambda v: v <= GOAL_MEDIAN_MS),
-    "time_p99": ("ms", None, None),
+    "error_median": ("um", Bound(GOAL_ERROR_MM * 1000, "<=", "um")),
+    "error_max": ("um", Bound(GOAL_ERROR_MM * 1000, "<=", "um")),
+    "time_median": ("ms", None),  # judged on the ratio to the other solver: TIME_GOALS
+    "time_p99": ("ms", None),
 }
+# The median solve time against the other solver's, timed on the same targets: the 2 ms budget
+# divided by the other solver's median on the machine that wrote bench/results.json (placo 0.3185
+# ms, pin 0.5252 ms), rounded down.
+TIME_GOALS = {"pin": Goal(6.2, was=f"<= {GOAL_MEDIAN_MS:g} ms"), "placo": Goal(3.8, was=f"<= {GOAL_MEDIAN_MS:g} ms")}
 
 
 def run(quick: bool = False) -> list[Result]:
@@ -140,8 +144,9 @@ def run(quick: bool = False) -> list[Result]:
     results: list[Result] = []
     for name in names:
         other = next((n for n in SOLVER_NAMES if n != name), None)
-        for figure, (unit, goal, test) in FIGURES.items():
+        for figure, (unit, bound) in FIGURES.items():
             value = figures[name][figure]
+            goal: Goal | Bound | None = TIME_GOALS.get(name) if figure == "time_median" else bound
             anchor = None
             note = base_note
             paired = None
@@ -152,6 +157,5 @@ def run(quick: bool = False) -> list[Result]:
                     note += "; ratio = median of per-target ratios"
             else:
                 note += f"; no anchor: {missing.get(other, 'other solver unavailable')}"
-            results.append(Result(f"{NAME}.{name}.{figure}", value, unit, anchor, goal,
-                                  None if test is None else bool(test(value)), note, paired))
+            results.append(Result(f"{NAME}.{name}.{figure}", value, unit, anchor, goal, note, paired))
     return results

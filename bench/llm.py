@@ -20,7 +20,7 @@ Goals: first token <= 0.5 s (a pause people accept before a robot speaks), reply
 Beside it, the fact-answer path (``facts.p99``): questions about the robot's state and the lab
 answered by :class:`stuart_bt.conversation.facts.FactAnswers` before any model, p99 over
 FACT_QUESTIONS x rounds; anchor: the local model's median first token in the same run (what the
-same question would have waited for). Goal: p99 <= 20 ms.
+same question would have waited for). Goal: p99 <= 0.1 x that (it was <= 20 ms).
 """
 
 from __future__ import annotations
@@ -36,16 +36,21 @@ import urllib.request
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .stats import paired_ratio
 
 NAME = "llm"
-GOAL_FIRST_S, GOAL_REPLY_S = 0.5, 2.0
+GOAL_FIRST_S, GOAL_REPLY_S = 0.5, 2.0  # the absolute goals the ratio goals replace (information)
+# In-process over llama_cpp.server on the same messages, same run: each absolute goal over the
+# server's time on the machine that wrote bench/results.json (77.6 ms, 699 ms), rounded down.
+GOALS = {"first_token": Goal(6.4, was=f"<= {GOAL_FIRST_S * 1000:g} ms"),
+         "reply": Goal(2.8, was=f"<= {GOAL_REPLY_S * 1000:g} ms")}
 MAX_TOKENS = 48
 PROMPTS = ["Hello! Who are you?", "Where is the kitchen?", "What happens in the drone cage?",
            "What do you see?", "Who runs this lab?", "Thank you, goodbye!"]
 CONTEXT = {"at": "entrance", "detections": [{"label": "bottle", "distance": 1.2}, "cup"]}
 GOAL_FACTS_MS = 20.0
+FACTS_RATIO = 0.1  # 20 ms against a ~0.2 s first token: a fact is said before a model would start
 FACT_QUESTIONS = ["What are you holding?", "Where are you?", "What are you doing?", "What can you do?",
                   "What do you see?", "Where is the cup?", "What happens in the drone cage?",
                   "Who runs the 3D printers?", "When is the lab open?", "Tell me about the reading room",
@@ -117,18 +122,17 @@ def run(quick: bool) -> list[Result]:
     note = (f"SmolLM2-135M Q4_1, {len(prompts)} prompts x {rounds} rounds, max_tokens {MAX_TOKENS}, "
             "temperature 0, persona+knowledge prompt; median")
     results = []
-    for figure, samples, goal in (("first_token", first, GOAL_FIRST_S), ("reply", whole, GOAL_REPLY_S)):
+    for figure, samples in (("first_token", first), ("reply", whole)):
         value = statistics.median(samples["local"]) * 1000
         anchor = (Anchor("same messages via llama_cpp.server (OpenAI HTTP, loopback)",
                          statistics.median(samples["server"]) * 1000) if samples["server"] else None)
-        results.append(Result(f"{NAME}.{figure}", value, "ms", anchor, f"<= {goal * 1000:.0f} ms",
-                              value <= goal * 1000,
+        results.append(Result(f"{NAME}.{figure}", value, "ms", anchor, GOALS[figure],
                               note + ("" if anchor else "; anchor null: llama_cpp.server packages absent"),
                               paired_ratio(samples["local"], samples["server"]) if anchor else None))
     warm = statistics.median(first["local"]) * 1000
     results.append(_facts(quick, warm))
     results.append(Result(f"{NAME}.cold_first_token", cold * 1000, "ms", Anchor("warm first_token (median)", warm),
-                          None, None, "first question after load, system prompt not yet cached; warm() removes it"))
+                          None, "first question after load, system prompt not yet cached; warm() removes it"))
     return results
 
 
@@ -149,6 +153,6 @@ def _facts(quick: bool, first_token_ms: float) -> Result:
     samples.sort()
     p99 = samples[int(len(samples) * 0.99) - 1]
     return Result(f"{NAME}.facts_p99", p99, "ms", Anchor("local model first token (median, same run)", first_token_ms),
-                  f"<= {GOAL_FACTS_MS:.0f} ms", p99 <= GOAL_FACTS_MS,
+                  Goal(FACTS_RATIO, was=f"<= {GOAL_FACTS_MS:.0f} ms"),
                   f"{len(FACT_QUESTIONS)} state and lab questions x {len(samples) // len(FACT_QUESTIONS)} rounds, "
                   "FactAnswers.answer, no model")

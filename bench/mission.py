@@ -31,12 +31,16 @@ from dataclasses import dataclass, field
 from stuart_bt.core.events import Event
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .stats import percentile
 
 NAME = "mission"
-GOAL_FIRST_P99_MS = 20.0
+GOAL_FIRST_P99_MS = 20.0  # the absolute goals the ratio goals replace (information)
 GOAL_STOP_P99_MS = 50.0
+# p99 over the ping round trip's p99, timed in the same run: each absolute goal over the ping's
+# p99 on the machine that wrote bench/results.json (0.3568 ms), rounded down.
+GOALS = {"utterance_to_first_command": Goal(56, was=f"<= {GOAL_FIRST_P99_MS:g} ms"),
+         "stop_to_all_daemons": Goal(140, was=f"<= {GOAL_STOP_P99_MS:g} ms")}
 SPEED = 20.0  # dry clock seconds per wall second: the ack takes ~1.5 clock s, so ~75 ms wall
 RATE = 20.0
 PLACES = ("kitchen", "bathroom")  # alternated, so the robot is never already there
@@ -139,13 +143,10 @@ def run(quick: bool) -> list[Result]:
             f"timing; utterances 'Hey Stuart, go to the kitchen/bathroom' alternating; anchor: {len(pings)} "
             "tts pings through the supervisor between repetitions, same percentile")
     results = []
-    for label, samples, goal in (("utterance_to_first_command", first, GOAL_FIRST_P99_MS),
-                                 ("stop_to_all_daemons", stop, GOAL_STOP_P99_MS)):
+    for label, samples in (("utterance_to_first_command", first), ("stop_to_all_daemons", stop)):
         for q in (50, 99):
             value = percentile(samples, q) * ms
             anchor = Anchor(f"daemon ping round trip p{q} (supervisor -> dry tts)", ping[q])
-            judged = q == 99
             results.append(Result(f"{NAME}.{label}.p{q}", value, "ms", anchor,
-                                  goal=f"<= {goal:g} ms" if judged else None,
-                                  met=(value <= goal) if judged else None, note=note))
+                                  goal=GOALS[label] if q == 99 else None, note=note))
     return results

@@ -10,7 +10,11 @@ Anchors:
   first that matches wins, one command per utterance). Timed the same way, utterance by
   utterance, interleaved with the grammar; also scored on the same corpus, which is what the
   grammar's extra microseconds buy;
-- constant: the original system's budget of 100 ms per utterance.
+- constant: the original system's budget of 100 ms per utterance (information: no goal).
+
+Goals, on the ratio to the naive list's p99 timed in the same run: each was "<= 50 us", divided by
+the naive list's p99 on the machine that wrote bench/results.json on a quiet day (9.0 us):
+<= 5.5. A machine with slower Python slows both; the ratio is what the grammar costs.
 
 Per utterance, each round times a batch of calls with the collector paused and keeps the
 per-call mean; an utterance's figure is the median over rounds (a slow spell of the VM lands
@@ -35,12 +39,13 @@ from typing import Any
 from stuart_bt.language.intents import TaskIntent
 from stuart_bt.language.parse import Parser
 
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .stats import gc_paused, percentile
 
 NAME = "parse"
 CORPUS = Path(__file__).resolve().parents[1] / "tests" / "data" / "utterances"
-GOAL_P99_US = 50.0
+GOAL_P99_US = 50.0  # the absolute goal the ratio goal replaces (information)
+GOAL_P99_RATIO = Goal(5.5, was=f"<= {GOAL_P99_US:g} us")
 BUDGET_US = 100_000.0  # the original system's per-utterance budget (100 ms)
 GOAL_ACCURACY = 98.0
 NAIVE = "naive regex list (wake regex + first-matching intent regex), same corpus, same run"
@@ -195,18 +200,15 @@ def run(quick: bool = False) -> list[Result]:
     return [
         Result(f"{NAME}.grammar.p50", g50, "us/utterance", Anchor(NAIVE, n50),
                note=f"median over {where}; per utterance the median of {rounds} rounds of {batch} calls"),
-        Result(f"{NAME}.grammar.p99", g99, "us/utterance", Anchor(NAIVE, n99), f"<= {GOAL_P99_US:g} us",
-               g99 <= GOAL_P99_US,
+        Result(f"{NAME}.grammar.p99", g99, "us/utterance", Anchor(NAIVE, n99), GOAL_P99_RATIO,
                note=f"99th percentile over {where}; slowest: {us['grammar'][slowest]:.1f} us for "
                     f"{utterances[slowest][:60]!r}"),
-        Result(f"{NAME}.grammar.p99_cold", c99, "us/utterance", Anchor(NAIVE, n99), f"<= {GOAL_P99_US:g} us",
-               c99 <= GOAL_P99_US,
+        Result(f"{NAME}.grammar.p99_cold", c99, "us/utterance", Anchor(NAIVE, n99), GOAL_P99_RATIO,
                note="single calls, wake filter cache cleared before each (timer resolution included)"),
         Result(f"{NAME}.grammar.p99_vs_budget", g99, "us/utterance",
-               Anchor("original system's budget: 100 ms per utterance (constant)", BUDGET_US),
-               f"ratio <= {GOAL_P99_US / BUDGET_US:g} (50 us)", g99 / BUDGET_US <= GOAL_P99_US / BUDGET_US,
-               note="the same p99 against the constant budget"),
-        Result(f"{NAME}.grammar.accuracy", acc, "% exact", Anchor(NAIVE, naive_acc), f">= {GOAL_ACCURACY:g} %",
-               acc >= GOAL_ACCURACY,
+               Anchor("original system's budget: 100 ms per utterance (constant)", BUDGET_US, timed=False),
+               note="the same p99 against the constant budget; information, no goal (a constant is no anchor for a "
+                    "time: the goal is on the ratio to the naive list, grammar.p99)"),
+        Result(f"{NAME}.grammar.accuracy", acc, "% exact", Anchor(NAIVE, naive_acc), Bound(GOAL_ACCURACY, ">=", "%"),
                note=f"wake and the exact intent sequence right, over {where} (the naive list: one intent at most)"),
     ]

@@ -28,13 +28,17 @@ from typing import Any
 
 import numpy as np
 
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .stats import paired_ratio
 
 NAME = "perception"
 GOAL_MEAN_M = 0.01
 GOAL_MAX_M = 0.025
-GOAL_RATE_HZ = 30.0
+GOAL_RATE_HZ = 30.0  # the absolute goal the ratio goal replaces (information)
+# The rate over the original system's 17 Hz, a constant (nothing of it runs here to time): 30/17,
+# rounded up. The only speed goal here whose anchor is not timed: with ~15x headroom it says
+# "not slower than 30 Hz", which a machine 3.5x slower still meets.
+GOAL_RATE = Goal(1.8, ">=", was=f">= {GOAL_RATE_HZ:g} Hz")
 ORIGINAL_RATE_HZ = 17.0
 TABLE_X, TABLE_Y = (3.97, 4.62), (0.96, 2.04)  # kitchen table top, objects' centres kept 6 cm inside
 REST_Z = {"bottle": 0.855, "cup": 0.80, "apple": 0.79}
@@ -196,15 +200,15 @@ def run(quick: bool) -> list[Result]:
     return [
         Result(f"{NAME}.position.error_mean", mean, "m",
                Anchor("original estimate (median depth at the box centre)", statistics.fmean(original)),
-               goal=f"<= {GOAL_MEAN_M:g} m", met=mean <= GOAL_MEAN_M,
+               goal=Bound(GOAL_MEAN_M, "<=", "m"),
                note=f"torso frame, vs the sim's object origins; {where}"),
         Result(f"{NAME}.position.error_max", worst, "m",
                Anchor("original estimate (median depth at the box centre)", max(original)),
-               goal=f"<= {GOAL_MAX_M:g} m", met=worst <= GOAL_MAX_M,
+               goal=Bound(GOAL_MAX_M, "<=", "m"),
                note=f"torso frame; p95 {float(np.percentile(ours, 95)):.4f} m; {where}"),
         Result(f"{NAME}.pipeline.rate", hz, "frames/s",
-               Anchor("original system, colour detection (thesis figure, not measured here)", ORIGINAL_RATE_HZ),
-               goal=f">= {GOAL_RATE_HZ:g} Hz", met=hz >= GOAL_RATE_HZ,
+               Anchor("original system, colour detection (thesis figure, not measured here)", ORIGINAL_RATE_HZ,
+                      timed=False), goal=GOAL_RATE,
                note=(f"sim detector + projection + memory on {len(frames)} recorded {SIZE[0]}x{SIZE[1]} frames "
                      f"(preloaded, looped), {processed} frames, one thread")),
         Result(f"{NAME}.render.fps", render, "frames/s",

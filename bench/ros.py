@@ -22,12 +22,15 @@ import sys
 import time
 from pathlib import Path
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .ros_anchor import RosPeer, RosUnavailable, missing
 from .stats import percentile
 
 NAME = "ros"
-GOAL_P99_MS = 20.0
+GOAL_P99_MS = 20.0  # the absolute goal the ratio goal replaces (information)
+# p99 over the plain rclpy round trip timed in the same run: 20 ms over that round trip on the
+# machine that wrote bench/results.json (0.3177 ms), rounded down.
+GOAL_P99 = Goal(62, was=f"<= {GOAL_P99_MS:g} ms")
 PLACES = ("kitchen", "bathroom")
 HARNESS = Path(__file__).resolve().parents[1] / "tests" / "ros_harness.py"
 
@@ -63,7 +66,7 @@ def run(quick: bool) -> list[Result]:
     note = f"{reps} utterances, dry backend; client-side clock; anchor measured right after in the same run"
     return [Result(f"{NAME}.audio_to_intent.p50", percentile(latencies, 50), "ms", anchor, note=note),
             Result(f"{NAME}.audio_to_intent.p99", percentile(latencies, 99), "ms", anchor,
-                   goal=f"<= {GOAL_P99_MS:g} ms", met=percentile(latencies, 99) <= GOAL_P99_MS, note=note)]
+                   goal=GOAL_P99, note=note)]
 
 
 def _sample(client, place: str) -> float:

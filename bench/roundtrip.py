@@ -12,9 +12,11 @@ Anchors, measured in the same run:
 All four are kept up together and measured in interleaved batches, so each sees the same
 machine: on this VM the same pipe round trip varies by 3x from one minute to the next.
 
-Goals: stuart_bt median <= 100 us, and <= half the rclpy median. The rclpy goal is judged
-against both rclpy set-ups; the same-process one is the faster, hence the harder, of the two,
-while the two-process one is the like-for-like comparison (a daemon is another process).
+Goals, on ratios: stuart_bt's median <= 1.5x the stdlib pipe's (it replaced "<= 100 us", which
+a machine with slower Python failed while the ratio held), and <= half the rclpy median. The
+rclpy goal is judged against both rclpy set-ups; the same-process one is the faster, hence the
+harder, of the two, while the two-process one is the like-for-like comparison (a daemon is
+another process).
 """
 
 from __future__ import annotations
@@ -24,14 +26,13 @@ from typing import Protocol
 
 from .daemon_peer import FAMILY, DaemonPeer
 from .pipe_echo import EchoPeer
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .ros_anchor import DOMAIN_ID, RosPeer, RosUnavailable
 from .stats import paired_ratio, percentile
 
 NAME = "roundtrip"
-GOAL_MEDIAN_US = 100.0
+GOAL_STDLIB_RATIO = 1.5
 GOAL_ROS_FRACTION = 0.5
-FIELD_NOTES_STDLIB_US = 57.0  # /work/shared/FIELD_NOTES.md: stdlib pipe round trip median
 WARMUP = 200
 ROS_MODES = {"same": "rclpy topic ping/pong, two nodes in one process, one SingleThreadedExecutor",
              "two": "rclpy topic ping/pong, pong node in a second process, one SingleThreadedExecutor each"}
@@ -111,23 +112,21 @@ def run(quick: bool = False) -> list[Result]:
              f"{rounds} rounds interleaved with the anchors")
     results = [
         Result(f"{NAME}.stuart_bt.median", median, "us", Anchor("stdlib JSON-lines pipe echo, median", plain_median),
-               f"median <= {GOAL_MEDIAN_US:g} us", median <= GOAL_MEDIAN_US,
-               f"{where}; p99 {p99:.1f} us; ratio = median of per-round median ratios; the goal was set when the "
-               f"stdlib anchor measured {FIELD_NOTES_STDLIB_US:g} us on this machine kind",
+               Goal(GOAL_STDLIB_RATIO, was="<= 100 us"),
+               f"{where}; p99 {p99:.1f} us; ratio = median of per-round median ratios",
                paired_ratio=median_ratio(batches, "stuart_bt", "stdlib")),
         Result(f"{NAME}.stuart_bt.p99", p99, "us", Anchor("stdlib JSON-lines pipe echo, p99", plain_p99),
                note=f"{where}; no goal of its own; ratio of the pooled p99s"),
     ]
-    goal = f"ratio <= {GOAL_ROS_FRACTION:g}"
+    goal = Goal(GOAL_ROS_FRACTION)
     for mode, label in ROS_MODES.items():
         name = f"{NAME}.stuart_bt.median_vs_rclpy_{mode}_process"
         if mode in missing:
-            results.append(Result(name, median, "us", None, goal, None, f"no rclpy anchor: {missing[mode]}"))
+            results.append(Result(name, median, "us", None, goal, f"no rclpy anchor: {missing[mode]}"))
             continue
         ros_median, ros_p99 = _us(samples[mode])
         ratio = median_ratio(batches, "stuart_bt", mode)
         results.append(Result(name, median, "us", Anchor(f"{label}, median", ros_median), goal,
-                              ratio <= GOAL_ROS_FRACTION,
                               f"rclpy: {len(samples[mode])} round trips, p99 {ros_p99:.1f} us; DDS on localhost, "
                               f"domain {DOMAIN_ID}; ratio = median of per-round median ratios",
                               paired_ratio=ratio))

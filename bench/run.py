@@ -6,7 +6,9 @@ existing output file (``kept`` in the JSON says which, and when and how they wer
 re-running one benchmark never loses the others' results.
 
 Each benchmark module exposes ``run(quick) -> list[Result]``; this module only schedules them
-and reports. Exit status: 0 when every benchmark ran (goals unmet are reported, not fatal: a
+and reports. Every row of the table shows the absolute figure, its anchor and their ratio; a goal
+on a time or a speed is judged on the ratio (bench/result.py), and the absolute goal it replaced
+is in the last column as information. Exit status: 0 when every benchmark ran (goals unmet are reported, not fatal: a
 loaded machine should not fail a build), 1 when one crashed, 2 for bad arguments.
 """
 
@@ -46,7 +48,7 @@ BENCHMARKS: dict[str, Callable[[bool], list[Result]]] = {
 }
 DEFAULT_OUTPUT = Path(__file__).with_name("results.json")
 PACKAGES = ("py_trees", "behaviortreepy", "ros-rclpy", "gtpyhop", "stuart-bt")
-COLUMNS = ("benchmark", "figure", "value", "unit", "anchor", "anchor value", "ratio", "goal", "met?")
+COLUMNS = ("benchmark", "figure", "value", "unit", "anchor", "anchor value", "ratio", "goal", "met?", "was")
 
 
 def machine() -> dict[str, Any]:
@@ -82,8 +84,9 @@ def table(results: list[Result]) -> str:
     rows = [COLUMNS]
     for r in results:
         met = "-" if r.met is None else ("yes" if r.met else "NO")
-        rows.append((r.benchmark, r.figure, _num(r.value), r.unit, _short(r.anchor.name) if r.anchor else "none",
-                     _num(r.anchor.value if r.anchor else None), _num(r.ratio), r.goal or "-", met))
+        anchor = "none" if r.anchor is None else _short(r.anchor.name) + ("" if r.anchor.timed else " (constant)")
+        rows.append((r.benchmark, r.figure, _num(r.value), r.unit, anchor, _num(r.anchor.value if r.anchor else None),
+                     _num(r.ratio), r.goal.text if r.goal else "-", met, (r.goal and r.goal.was) or "-"))
     widths = [max(len(row[i]) for row in rows) for i in range(len(COLUMNS))]
     lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip() for row in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))

@@ -31,14 +31,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .stats import paired_ratio
 
 NAME = "sim"
 REPO = Path(__file__).resolve().parents[1]
 TOUR = REPO / "trees" / "lab_tour.yaml"
 STATIONS = 6
-GOAL_RTF = 20.0  # sim seconds per wall second, on 2 cores
+# The tour's real-time factor as a share of the free-running world's, timed in the same run:
+# 20x real time over the 49.76 the world free-ran at on the machine that wrote bench/results.json
+# (0.402), rounded up. A machine with slower Python slows both; the share is what the tree keeps.
+GOAL_RTF = Goal(0.41, ">=", was=">= 20 sim s/wall s")
 GOAL_POSITION_M = 0.05
 GOAL_YAW_DEG = 3.0
 RENDER_SIZE = (424, 240)  # the D435i's small stream, what a perception node would ask for
@@ -193,11 +196,10 @@ def run(quick: bool) -> list[Result]:
               "ratio = median over runs of run / mean of its two windows")
     results = [
         Result(f"{NAME}.tour.real_time_factor", statistics.median(rtf), "sim s/wall s", anchor,
-               goal=f">= {GOAL_RTF:g}", met=statistics.median(rtf) >= GOAL_RTF,
-               note=f"session.run() only (world and daemons already up). {common}",
+               goal=GOAL_RTF, note=f"session.run() only (world and daemons already up). {common}",
                paired_ratio=paired_ratio(rtf, around)),
         Result(f"{NAME}.tour.real_time_factor_with_startup", statistics.median(rtf_start), "sim s/wall s", anchor,
-               goal=f">= {GOAL_RTF:g}", met=statistics.median(rtf_start) >= GOAL_RTF,
+               goal=GOAL_RTF,
                note=("from Session() to the end of the run: world launch and READY, daemon start and handshakes "
                      f"(median {statistics.median(r.total_wall - r.run_wall for r in runs):.2f} wall s) included. "
                      + common),
@@ -220,14 +222,12 @@ def _arrival_results(runs: list[TourRun]) -> list[Result]:
            "ratio is the share of that budget used; the dry backend's error is 0 by construction, no anchor. ")
     return [
         Result(f"{NAME}.tour.arrival_error_max", position, "m",
-               Anchor("navigate position tolerance", tol_m),
-               goal=f"<= {GOAL_POSITION_M:g} m", met=position <= GOAL_POSITION_M,
+               Anchor("navigate position tolerance", tol_m, timed=False), goal=Bound(GOAL_POSITION_M, "<=", "m"),
                note=(why + f"max over the {STATIONS} stations x {len(runs)} run(s) of the world's arrival_error "
                      f"in the navigate results (worst: {worst_pos[0]}); independent check, result pose to the "
                      f"commanded goal: max {pose_check:.4f} m")),
         Result(f"{NAME}.tour.arrival_yaw_error_max", yaw, "degrees",
-               Anchor("navigate yaw tolerance", tol_deg),
-               goal=f"<= {GOAL_YAW_DEG:g} degrees", met=yaw <= GOAL_YAW_DEG,
+               Anchor("navigate yaw tolerance", tol_deg, timed=False), goal=Bound(GOAL_YAW_DEG, "<=", "degrees"),
                note=why + f"max |yaw error| over the {STATIONS} stations x {len(runs)} run(s) (worst: {worst_yaw[0]})"),
     ]
 

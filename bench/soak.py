@@ -32,13 +32,16 @@ from dataclasses import dataclass
 from typing import Any
 
 from . import procstat
-from .result import Anchor, Result
+from .result import Anchor, Bound, Goal, Result
 from .ros import _harness
 from .ros_anchor import RosUnavailable, missing
 
 NAME = "soak"
 GOAL_RSS_RATIO = 1.10
-GOAL_FLOOD_LATENCY_S = 1.0
+GOAL_FLOOD_LATENCY_S = 1.0  # the absolute goal the ratio goal replaces (information)
+# after the flood over before it, same run: 1 s over the 0.106 s before the flood on the machine
+# that wrote bench/results.json, rounded down
+GOAL_FLOOD_LATENCY = Goal(9.3, "<", was=f"< {GOAL_FLOOD_LATENCY_S:g} s")
 FLOOD_RATE = 500.0  # messages per second on /audio_msg
 IDLE_TIMEOUT = 120.0  # wall seconds for one command to be done with; longer is a failure, not a sample
 
@@ -148,16 +151,15 @@ def footprint_results(soak: Soak) -> list[Result]:
     ended = f" (missions: {soak.outcomes})" if soak.outcomes else ""
     note = (f"{soak.commands} utterances in {soak.seconds:.0f} s wall{ended}; anchor: the same process tree "
             f"({soak.warm.processes} processes) after the warm-up, in the same run")
-    rss_ratio = soak.end.rss_kb / soak.warm.rss_kb
     return [
         Result(f"{NAME}.{soak.label}.rss", soak.end.rss_kb / 1024, "MB",
                Anchor("RSS of the same process tree after warm-up", soak.warm.rss_kb / 1024),
-               goal=f"ratio <= {GOAL_RSS_RATIO:g}", met=rss_ratio <= GOAL_RSS_RATIO, note=note),
+               goal=Goal(GOAL_RSS_RATIO), note=note),
         Result(f"{NAME}.{soak.label}.fds", soak.end.fds, "fds",
                Anchor("open fds of the same process tree after warm-up", soak.warm.fds),
-               goal="ratio <= 1 (flat)", met=soak.end.fds <= soak.warm.fds, note=note),
+               goal=Goal(1.0), note=note),
         Result(f"{NAME}.{soak.label}.leftover_processes", soak.leftovers, "processes", None,
-               goal="== 0", met=soak.leftovers == 0,
+               goal=Bound(0, "=="),
                note="processes the session started that were still alive 10 s after it closed"),
     ]
 
@@ -222,7 +224,7 @@ def ros_flood(seconds: float, warm_commands: int) -> list[Result]:
     soak = Soak("ros_flood", flood["sent"], warm, end, leftovers, flood["seconds"])
     return [Result(f"{NAME}.ros_flood.good_command_latency", after, "s",
                    Anchor("the same command before the flood (median)", anchor_s),
-                   goal=f"< {GOAL_FLOOD_LATENCY_S:g} s", met=after < GOAL_FLOOD_LATENCY_S, note=note),
+                   goal=GOAL_FLOOD_LATENCY, note=note),
             *footprint_results(soak)]
 
 

@@ -31,7 +31,7 @@ from stuart_bt.core.clock import ManualClock
 from stuart_bt.core.events import EventStream
 from stuart_bt.run.executor import Executor
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .sink import EventCounter
 from .stats import interleaved_runs, paired_ratio
 from .trees import Shape, btcpp_xml, build_py_trees
@@ -140,14 +140,14 @@ def _executor_result(shape: Shape, us: dict[str, float], ratios: dict[str, float
     note = (f"{shape.size} nodes, {per_tick_events:g} status events per tick while timed; "
             f"ratio = median of per-round ratios; A/A noise: a second raw tree timed {ratios['raw_twin']:.3f}x "
             "the first")
+    goal = None
     if shape.steady:
-        goal, met = f"ratio <= {GOAL_RATIO}", ratio <= GOAL_RATIO
+        goal = Goal(GOAL_RATIO)
         note += "; steady state (statuses unchanged after the first tick)"
     else:
-        goal, met = None, None
         note += "; worst case for the status diff (every node changes every tick), reported without a goal"
     return Result(f"{NAME}.executor.{shape.label}", us["executor"], "us/node/tick",
-                  Anchor(PY_TREES_ANCHOR, us["raw"]), goal, met, note, paired_ratio=ratio)
+                  Anchor(PY_TREES_ANCHOR, us["raw"]), goal, note, paired_ratio=ratio)
 
 
 def _py_trees_result(shape: Shape, us: dict[str, float], ratios: dict[str, float]) -> Result:

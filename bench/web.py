@@ -15,8 +15,9 @@ minus the event's publish time (``time.time()`` on both sides: one machine, one 
   the median tick with the web view; ratio: median over rounds of (median tick web / median tick
   none), goal <= 1.05. Trees: ``flip-10`` (10 status changes every tick: more than a real tree, the tour averages
   well under one per tick) and ``flip-100`` (100 per tick, the worst case, no goal).
-- **latency** (goal p99 <= 100 ms): every status event of those runs, publish to receive in a
-  client process.
+- **latency**: every status event of those runs, publish to receive in a client process;
+  anchor: the executor's tick period (a constant: the pace the view has to keep up with), goal
+  p99 <= 2 ticks (it was p99 <= 100 ms, the same at 20 Hz).
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from stuart_bt.core.clock import ManualClock
 from stuart_bt.core.events import EventStream
 from stuart_bt.run.executor import Executor
 
-from .result import Anchor, Result
+from .result import Anchor, Goal, Result
 from .sink import EventCounter
 from .stats import gc_paused, percentile
 from .trees import Shape, build_py_trees
@@ -41,7 +42,8 @@ from .trees import Shape, build_py_trees
 NAME = "web"
 CLIENTS = 5
 GOAL_OVERHEAD = 5.0  # percent
-GOAL_LATENCY_P99_MS = 100.0
+GOAL_LATENCY_P99_MS = 100.0  # the absolute goal the ratio goal replaces (information)
+GOAL_LATENCY_P99 = Goal(2.0, was=f"<= {GOAL_LATENCY_P99_MS:g} ms")  # two tick periods at 20 Hz
 
 CLIENT = r"""
 import json, sys, threading, time
@@ -169,7 +171,7 @@ def overhead(shape: Shape, watched: Executor, ticks: int, rounds: int, rate: flo
     none_us, web_us = statistics.median(ticks_of["none"]) * 1e6, statistics.median(ticks_of["web"]) * 1e6
     noise = (statistics.median(floor) - 1) * 100
     limit = 1.0 + GOAL_OVERHEAD / 100.0
-    goal = f"ratio <= {limit:g} (overhead <= {GOAL_OVERHEAD:g} %)" if shape.size <= 10 else None
+    goal = Goal(limit) if shape.size <= 10 else None
     note = (f"{shape.label}: {shape.size} status changes per tick at {rate:g} Hz, with the web view and {CLIENTS} "
             f"WebSocket client processes; overhead {(ratio - 1) * 100:+.1f} %, noise floor (a second tree without "
             f"the web view against the first) {noise:+.1f} % ({rounds} rounds of {ticks} ticks each, order rotating, "
@@ -178,18 +180,17 @@ def overhead(shape: Shape, watched: Executor, ticks: int, rounds: int, rate: flo
         note += "; worst case (every node changes every tick), no goal"
     return Result(f"{NAME}.tick_overhead.{shape.label}", web_us, "us/tick",
                   Anchor("the same executor and tree without the web view", none_us),
-                  goal, ratio <= limit if goal else None, note, paired_ratio=ratio)
+                  goal, note, paired_ratio=ratio)
 
 
 def latency(delays: list[float], rate: float) -> list[Result]:
     delays_ms = [d * 1000.0 for d in delays]
     p50, p99 = percentile(delays_ms, 50), percentile(delays_ms, 99)
-    anchor = Anchor(f"executor tick period at {rate:g} Hz (ms)", 1000.0 / rate)
+    anchor = Anchor(f"executor tick period at {rate:g} Hz (ms)", 1000.0 / rate, timed=False)
     note = (f"{len(delays_ms)} status events received by {CLIENTS} WebSocket client processes during the tick "
             f"overhead runs ({rate:g} Hz); publish (executor thread) to receive (client process)")
     return [Result(f"{NAME}.latency.p50", p50, "ms", anchor, note=note),
-            Result(f"{NAME}.latency.p99", p99, "ms", anchor, f"<= {GOAL_LATENCY_P99_MS:g} ms",
-                   p99 <= GOAL_LATENCY_P99_MS, note)]
+            Result(f"{NAME}.latency.p99", p99, "ms", anchor, GOAL_LATENCY_P99, note)]
 
 
 def run(quick: bool = False) -> list[Result]:

@@ -1,6 +1,6 @@
 """The loop every skill daemon runs: JSON lines in on stdin, JSON lines out on a private stdout.
 
-One thread, one ``selectors`` loop: read request lines, hand them to the backend, poll the
+One thread, one ``poll`` loop: read request lines, hand them to the backend, poll the
 running activities, send heartbeats, and stop the robot when the framework goes away (stdin
 EOF, broken pipe) or a signal arrives. Keeping it single-threaded means a stop is handled
 between two polls, never racing a half-finished command.
@@ -18,7 +18,7 @@ import importlib
 import json
 import math
 import os
-import selectors
+import select
 import signal
 import stat
 import sys
@@ -147,12 +147,19 @@ class Daemon:
         self._broken = False  # nobody reads our output any more
         self._exiting = False
         self._signals = signals  # filled by the handlers _catch_signals installed
-        self._selector = selectors.DefaultSelector()
-        self._selector.register(in_fd, selectors.EVENT_READ)
+        self._builtins = {p.PING: self._ping, p.STATE: self._state, p.CANCEL: self._cancel, p.STOP: self._stop,
+                          p.SHUTDOWN: self._shutdown}
+        # select.poll itself, not the selectors module: its wrapper was a measurable share of a
+        # round trip (docs/protocol.md, "Round trip cost")
+        self._poller = select.poll()
+        self._poller.register(in_fd, select.POLLIN)
+        self._waiting_to_write = False  # out_fd is registered for POLLOUT (a backlog the pipe refused)
+        self._behind = False  # the last flush left bytes the pipe would not take
+        self._wait = 0.0  # wall seconds the next poll may block
         self._wake_r, wake_w = os.pipe()
         os.set_blocking(wake_w, False)
-        self._selector.register(self._wake_r, selectors.EVENT_READ)
-        signal.set_wakeup_fd(wake_w)  # a signal also wakes the select at once
+        self._poller.register(self._wake_r, select.POLLIN)
+        signal.set_wakeup_fd(wake_w)  # a signal also wakes the poll at once
 
     def run(self) -> int:
         self._send(p.ready(self.family, self.backend_name, os.getpid(), [*p.BUILTIN_COMMANDS, *self._commands]))
@@ -164,24 +171,29 @@ class Daemon:
     # -- one turn of the loop ---------------------------------------------------------------
 
     def _step(self) -> None:
-        for key, _mask in self._selector.select(self._timeout()):
-            if key.fd == self._in_fd:
+        """Wait for input or for the next thing due, handle it, then write. The write comes last
+        and the wait right after it: the framework, woken by the reply, finds this process asleep
+        rather than still at its bookkeeping beside it (a few µs of every round trip on a 2-vCPU
+        VM, docs/protocol.md "Round trip cost")."""
+        for fd, _events in self._poller.poll(self._wait * 1000.0):
+            if fd == self._in_fd:
                 self._read_input()
-            elif key.fd == self._wake_r:
+            elif fd == self._wake_r:
                 os.read(self._wake_r, 512)
         if self._signals and not self._exiting:
             name = signal.Signals(self._signals[0]).name
             self._stop_everything("stopped", f"{self.family} daemon received {name}")
             self._exiting = True
         if not self._exiting:
-            self._check_watchdog()
-            self._poll_activities()
+            if self._activities:  # both are about running activities (a ping or a state is none)
+                self._check_watchdog()
+                self._poll_activities()
             for level, message in self.backend.take_logs():
                 self._send(p.log(level, message))
+            if time.monotonic() >= self._next_heartbeat:
+                self._heartbeat()
+        self._wait = self._timeout()
         self._flush()
-        if not self._exiting:
-            self._heartbeat_if_due()  # after the flush, so a backlog means the reader is behind
-            self._flush()
 
     def _check_watchdog(self) -> None:
         """A framework that went silent while motion runs (hung, frozen, its machine gone) leaves
@@ -244,10 +256,7 @@ class Daemon:
         if request_id in self._activities:
             self._send(p.error(request_id, "bad_request", f"request id {request_id!r} is already running"))
             return
-        builtin = {
-            p.PING: self._ping, p.STATE: self._state, p.CANCEL: self._cancel, p.STOP: self._stop,
-            p.SHUTDOWN: self._shutdown,
-        }.get(cmd)
+        builtin = self._builtins.get(cmd)
         if builtin is not None:
             builtin(request_id, args)
         elif cmd in self._commands:
@@ -350,12 +359,10 @@ class Daemon:
                 del self._activities[request_id]
                 self._send(p.done(request_id, outcome.result))
 
-    def _heartbeat_if_due(self) -> None:
-        wall = time.monotonic()
-        if wall < self._next_heartbeat:
-            return
-        self._next_heartbeat = wall + self._heartbeat_period
-        if self._out:  # the framework is behind: do not pile heartbeats on top
+    def _heartbeat(self) -> None:
+        """One heartbeat, now due: the backend's state, unless the framework is behind."""
+        self._next_heartbeat = time.monotonic() + self._heartbeat_period
+        if self._behind:  # the framework is behind: do not pile heartbeats on top
             return
         try:
             state = self.backend.state()
@@ -404,12 +411,13 @@ class Daemon:
                     self._exiting = True
                 return
             del self._out[:written]
-        want_write = bool(self._out) and not self._broken
-        registered = self._out_fd in self._selector.get_map()
-        if want_write and not registered:
-            self._selector.register(self._out_fd, selectors.EVENT_WRITE)
-        elif registered and not want_write:
-            self._selector.unregister(self._out_fd)
+        # kept in flags: the heartbeat asks whether the framework is behind, the poll what to watch
+        want_write = self._behind = bool(self._out) and not self._broken
+        if want_write and not self._waiting_to_write:
+            self._poller.register(self._out_fd, select.POLLOUT)
+        elif self._waiting_to_write and not want_write:
+            self._poller.unregister(self._out_fd)
+        self._waiting_to_write = want_write
 
     def _close(self) -> None:
         try:
@@ -417,10 +425,10 @@ class Daemon:
         except Exception as e:  # noqa: BLE001 - the daemon is exiting anyway: say why and go
             self._log_exception("backend close failed", e)
         for fd in (self._in_fd, self._wake_r):
-            self._selector.unregister(fd)
+            self._poller.unregister(fd)
         deadline = time.monotonic() + EXIT_FLUSH_SECONDS
         while self._out and not self._broken and time.monotonic() < deadline:
             self._flush()
             if self._out:
-                self._selector.select(max(0.0, deadline - time.monotonic()))
+                self._poller.poll(max(0.0, deadline - time.monotonic()) * 1000.0)
         signal.set_wakeup_fd(-1)

@@ -238,6 +238,29 @@ def _decodes_or_refuses(line) -> None:
         p.check_daemon_message(message)
 
 
+def _lines_of(stream: bytes, limit: int) -> list[bytes | str]:
+    """What a line buffer must give for ``stream`` however it is cut into reads: each complete
+    line that is not blank, "oversize" for each line over ``limit`` (a long unfinished last line
+    included: it is known to be too long before its end arrives)."""
+    *complete, unfinished = stream.split(b"\n")
+    out: list[bytes | str] = ["oversize" if len(line) > limit else line for line in complete if line.strip()
+                              or len(line) > limit]
+    return out + (["oversize"] if len(unfinished) > limit else [])
+
+
+@FUZZ
+@given(st.lists(st.sampled_from([b"\n", b" ", b"{}", b'{"a":1}', b"x" * 7, b"\n\n"]), max_size=40),
+       st.lists(st.integers(min_value=1, max_value=40), max_size=20))
+def test_line_buffer_gives_the_same_lines_however_the_stream_is_cut(pieces, cuts):
+    stream = b"".join(pieces)
+    lines, out, start = p.LineBuffer(limit=10), [], 0
+    for cut in [*cuts, len(stream)]:  # reads of any size, some ending at a newline (the quick path)
+        out += lines.feed(stream[start:start + cut])
+        start += cut
+    out += lines.feed(stream[start:])
+    assert ["oversize" if isinstance(line, p.Oversize) else line for line in out] == _lines_of(stream, 10)
+
+
 @FUZZ
 @given(st.binary(max_size=300))
 def test_decode_of_arbitrary_bytes_gives_a_message_or_a_protocol_error(data):
@@ -276,6 +299,9 @@ def test_deep_nesting_is_refused_before_the_parser_recurses(depth, bracket):
     (b'{"x": NaN}', "NaN is not a number"),
     (b'{"x": -Infinity}', "-Infinity is not a number"),
     (b'{"x": 1e400}', "too large for a float"),
+    (b'{"x": 1E+0400}', "too large for a float"),
+    (b'{"x": -2' + b"0" * 400 + b'.5}', "too large for a float"),  # no exponent, a long mantissa
+    (b'{"x": 9' + b"0" * 300 + b'e10}', "too large for a float"),
     (b'{"x": ' + b"9" * 5000 + b"}", "not JSON"),
     (b'{"x": "\\ud800"}', "lone surrogate"),
     (b"\xff\xfe{}", "not UTF-8"),
@@ -305,6 +331,38 @@ def test_the_schema_of_each_daemon_message_type_is_checked(message, says):
     with pytest.raises(p.ProtocolError, match=says.replace("(", r"\(").replace(")", r"\)")) as caught:
         p.check_daemon_message(message)
     assert caught.value.request_id == message.get("id")
+
+
+def _verdict(read) -> tuple[Any, ...]:
+    try:
+        return ("read", read())
+    except p.ProtocolError as e:
+        return ("refused", e.reason, e.request_id)
+
+
+POSE_KEY_SPELLINGS = ["pose", "robot_pose", "\\u0070ose", "robot_po\\u0073e", "p\\u006Fse", "posed", "x"]
+
+
+@FUZZ
+@given(JSON_VALUES, st.sampled_from(POSE_KEY_SPELLINGS), st.sampled_from(["done", "progress", "error", "heartbeat"]))
+def test_reading_a_daemon_line_gives_the_verdict_of_decode_then_the_schema(value, key, kind):
+    """The framework's reader skips walks the text shows to be idle (no pose key, no number that
+    can overflow); it must refuse exactly what the full check refuses, escaped keys included."""
+    body = {"done": "result", "progress": "data", "error": "data", "heartbeat": "state"}[kind]
+    extra = {"error": ',"code":"blocked","reason":"x"', "heartbeat": ',"seq":1'}.get(kind, "")
+    line = (f'{{"type":"{kind}","id":"r1"{extra},"{body}":{{"{key}":{json.dumps(value, allow_nan=True)}}}}}'
+            .encode())
+    assert _verdict(lambda: p.decode_daemon_message(line)) == _verdict(lambda: p.check_daemon_message(p.decode(line)))
+
+
+@pytest.mark.parametrize("line", [
+    rb'{"type":"done","id":"r1","result":{"\u0070ose":{"x":"abc","y":0}}}',
+    rb'{"type":"progress","id":"r1","data":{"robot_po\u0073e":{"x":1}}}',
+])
+def test_a_pose_whose_key_is_spelled_with_escapes_is_still_checked(line):
+    with pytest.raises(p.ProtocolError, match="pose") as caught:
+        p.decode_daemon_message(line)
+    assert caught.value.request_id == "r1"
 
 
 def test_every_message_a_daemon_builds_passes_the_schema():

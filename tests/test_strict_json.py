@@ -12,10 +12,12 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from stuart_bt.core.clock import ManualClock
 from stuart_bt.core.events import Event, EventStream
-from stuart_bt.core.jsonfile import to_json
+from stuart_bt.core.jsonfile import compact_encoder, to_json
 from stuart_bt.ros.topics import EventTranslator
 from stuart_bt.run.snapshot import TreeSnapshot
 
@@ -38,6 +40,39 @@ def test_to_json_also_cleans_what_a_default_hook_returns():
     class Odd:
         pass
     assert strict(to_json({"thing": Odd()}, default=lambda o: {"value": math.nan})) == {"thing": {"value": None}}
+
+
+JSON_LIKE = st.recursive(st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=8),
+                         lambda inner: st.lists(inner, max_size=4) | st.tuples(inner, inner)
+                         | st.dictionaries(st.text(max_size=5), inner, max_size=4), max_leaves=25)
+
+
+@settings(max_examples=300, deadline=None)
+@given(JSON_LIKE, st.booleans())
+def test_the_compact_encoder_writes_what_to_json_writes(value, ensure_ascii):
+    """The daemon protocol's encoder (made once, for speed) against the reference: the same
+    text for any value, NaN and infinities as null included."""
+    expected = to_json(value, separators=(",", ":"), ensure_ascii=ensure_ascii)
+    assert compact_encoder(ensure_ascii)(value) == expected
+    strict(expected)
+
+
+def test_the_compact_encoder_without_the_c_accelerator_writes_the_same(monkeypatch):
+    value = {"a": [1.5, math.nan, "é\n"], "b": {"c": None, "d": True}}
+    fast = compact_encoder(ensure_ascii=False)(value)
+    monkeypatch.setattr(json.encoder, "c_make_encoder", None)
+    assert compact_encoder(ensure_ascii=False)(value) == fast == '{"a":[1.5,null,"é\\n"],"b":{"c":null,"d":true}}'
+
+
+def test_the_compact_encoder_refuses_a_loop_and_an_unknown_type_as_json_dumps_does():
+    looped: list[Any] = []
+    looped.append(looped)
+    encode = compact_encoder()
+    with pytest.raises(ValueError, match="Circular reference"):
+        encode({"a": looped})
+    with pytest.raises(TypeError, match="not JSON serializable"):
+        encode({"when": object()})
+    assert encode({"still": "fine"}) == '{"still":"fine"}'  # a failed call leaves nothing behind
 
 
 @pytest.mark.parametrize("backend", ["dry", pytest.param("sim", marks=pytest.mark.slow)])

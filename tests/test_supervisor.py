@@ -7,6 +7,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -272,6 +273,60 @@ def test_wait_gives_the_request_back_unfinished_after_its_timeout(make):
     sup.start()
     walk = sup.wait(sup.client("loco").request("navigate", LONG_WALK), timeout=0.1)
     assert not walk.finished and walk.status == "accepted"
+
+
+def test_a_daemon_killed_while_waited_on_fails_the_request_at_once(make):
+    sup = make(families=("loco",))
+    sup.start()
+    walk = sup.client("loco").request("navigate", LONG_WALK)
+    killer = threading.Timer(0.2, os.kill, (sup.pid("loco"), signal.SIGKILL))
+    killer.start()
+    try:
+        sup.wait(walk, timeout=30.0)
+    finally:
+        killer.cancel()
+    assert (walk.error_code, walk.reason) == ("daemon_died", "loco daemon exited with signal SIGKILL")
+
+
+def test_a_daemon_that_hangs_while_waited_on_fails_the_request_hung(make):
+    """The health checks that only time can trigger still run while wait() blocks."""
+    sup = make(families=("loco",), heartbeat_timeout=0.5)
+    sup.start()
+    walk = sup.client("loco").request("navigate", LONG_WALK)
+    sup.wait(walk, timeout=0.1)  # accepted and walking
+    os.kill(sup.pid("loco"), signal.SIGSTOP)
+    sup.wait(walk, timeout=30.0)
+    assert (walk.error_code, walk.reason) == ("daemon_hung", "loco daemon sent no heartbeat for 0.5 s")
+
+
+def test_waiting_on_many_replies_checks_health_per_period_not_per_reply(make, monkeypatch):
+    """A round trip through wait() used to run every daemon's health checks on each wake-up,
+    twice per reply; they are about time (hangs, restarts), so once per check period is enough."""
+    sup = make(families=("tts", "loco"))
+    sup.start()
+    tts = sup.client("tts")
+    checks = []
+    monkeypatch.setattr(sup, "_check", lambda d, now: checks.append(now))
+    started = time.monotonic()
+    for _ in range(200):
+        assert sup.wait(tts.request("ping"), timeout=5.0).ok
+    periods = (time.monotonic() - started) / sup.check_period
+    assert len(checks) <= len(sup.families) * (periods + 2), (len(checks), periods)
+
+
+def test_heartbeats_keep_coming_while_requests_follow_each_other(make):
+    """The daemon queues its heartbeat before writing a turn's replies; a steady stream of
+    requests must not crowd heartbeats out (the supervisor would call the daemon hung)."""
+    sup = make(families=("tts",), heartbeat_timeout=0.3)
+    sup.start()
+    tts = sup.client("tts")
+    first = tts.last_heartbeat
+    pings = 0
+    until = time.monotonic() + 1.0  # three heartbeat timeouts of back-to-back pings
+    while time.monotonic() < until:
+        assert sup.wait(tts.request("ping"), timeout=5.0).ok
+        pings += 1
+    assert sup.phase("tts") == "ready" and tts.last_heartbeat > first, pings
 
 
 def test_asking_for_a_family_that_is_not_there_suggests_one(make):

@@ -8,6 +8,7 @@ import math
 import os
 import re
 import stat
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TypeGuard
 
@@ -90,6 +91,38 @@ def to_json(value: Any, **options: Any) -> str:
         return json.dumps(value, **options)
     except ValueError:  # "Out of range float values are not JSON compliant"
         return json.dumps(_finite(value), **options)
+
+
+def compact_encoder(ensure_ascii: bool = True) -> Callable[[Any], str]:
+    """``to_json(value, separators=(",", ":"), ensure_ascii=...)`` for a hot path (a daemon's
+    line). ``json.dumps`` given any option builds a new encoder on every call, and each
+    ``JSONEncoder.encode`` builds a C encoder and a table of the containers it is inside: more
+    work than encoding a short line. This makes the C encoder once, with no such table: a
+    circular structure ends in RecursionError inside the encoder, raised here as the same
+    ``ValueError`` json.dumps raises (as is a structure nested past the recursion limit). A NaN
+    or an infinity takes :func:`to_json`'s path and is written as ``null``."""
+    options: dict[str, Any] = {"separators": (",", ":"), "ensure_ascii": ensure_ascii}
+    # the C encoder json.JSONEncoder makes for each call; None where the accelerator is missing
+    make_c_encoder = getattr(json.encoder, "c_make_encoder", None)
+    chunks: Callable[[Any, int], Sequence[str]]
+    if make_c_encoder is None:
+        python_encode = json.JSONEncoder(**options, allow_nan=False).encode
+
+        def chunks(value: Any, _level: int) -> Sequence[str]:
+            return [python_encode(value)]
+    else:
+        strings = json.encoder.encode_basestring_ascii if ensure_ascii else json.encoder.encode_basestring
+        chunks = make_c_encoder(None, json.JSONEncoder().default, strings, None, ":", ",", False, False, False)
+
+    def dumps(value: Any) -> str:
+        try:
+            return "".join(chunks(value, 0))
+        except RecursionError:
+            raise ValueError("Circular reference detected (or nested deeper than the recursion limit)") from None
+        except ValueError:  # a NaN or an infinity somewhere: the cleaning path
+            return to_json(value, **options)
+
+    return dumps
 
 
 def nesting_depth(text: str | bytes, limit: int = 0) -> int:

@@ -64,12 +64,12 @@ class Request:
         kind = message.get("type")
         if self.finished:
             return
-        if kind == p.ACCEPTED:
+        if kind == p.DONE:
+            self.status, self.result, self.finished_at = DONE, message.get("result") or {}, time.monotonic()
+        elif kind == p.ACCEPTED:
             self.status, self.accepted_data = ACCEPTED, message.get("data") or {}
         elif kind == p.PROGRESS:
             self.status, self.progress = ACCEPTED, message.get("data") or {}
-        elif kind == p.DONE:
-            self.status, self.result, self.finished_at = DONE, message.get("result") or {}, time.monotonic()
         elif kind == p.ERROR:
             self.fail(message.get("code", "backend_error"), message.get("reason", ""), message.get("vendor_code"),
                       message.get("data"))
@@ -160,7 +160,7 @@ class DaemonClient:
             return request
         self._pending[request.id] = request
         self._out += p.encode(p.request(request.id, cmd, args))
-        self.flush()
+        self.flush()  # last: the caller then waits at once, while the daemon works
         return request
 
     def keep_alive(self) -> None:
@@ -225,7 +225,8 @@ class DaemonClient:
 
     def poll(self) -> None:
         """Read every byte available now and dispatch the complete lines."""
-        self.flush()
+        if self._out:
+            self.flush()
         while self._read_fd is not None and not self.eof:
             try:
                 data = os.read(self._read_fd, READ_CHUNK)
@@ -236,13 +237,18 @@ class DaemonClient:
                 return
             for line in self._lines.feed(data):
                 self._handle(line)
+            if len(data) < READ_CHUNK:
+                # A pipe returns less than asked only when it is empty: reading again would only
+                # raise EAGAIN. Whatever comes next (EOF included) makes the fd readable again,
+                # and a daemon that exited is found by the supervisor's exit check meanwhile.
+                return
 
     def _handle(self, line: bytes | p.Oversize) -> None:
         if isinstance(line, p.Oversize):
             self._bad_line(f"{self.family} daemon sent a line of {line.size}+ bytes (limit {p.MAX_LINE}); ignored")
             return
         try:
-            message = p.check_daemon_message(p.decode(line))
+            message = p.decode_daemon_message(line)
         except p.ProtocolError as e:
             request = self._pending.get(e.request_id) if e.request_id is not None else None
             if request is not None:  # a malformed reply still ends its request, with the reason
@@ -250,13 +256,13 @@ class DaemonClient:
             self._bad_line(f"{self.family} daemon sent a line that is not protocol ({e.reason}): {line[:120]!r}")
             return
         kind = message["type"]
-        if kind == p.HEARTBEAT:
+        if kind in p.REPLY_TYPES:
+            self._reply(message)
+        elif kind == p.HEARTBEAT:
             self.state = message["state"]
             self.last_heartbeat = time.monotonic()
             for listener in self.state_listeners:
                 listener(self.state)
-        elif kind in p.REPLY_TYPES:
-            self._reply(message)
         elif kind == p.READY:
             self.ready = message
             self.last_heartbeat = time.monotonic()

@@ -8,11 +8,12 @@ string and can never start a second command.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass
 from typing import Any
 
 from ..core.errors import StuartError
-from ..core.jsonfile import is_finite_number, nesting_depth, to_json
+from ..core.jsonfile import compact_encoder, is_finite_number, nesting_depth
 
 PROTOCOL_VERSION = 1
 MAX_LINE = 1 << 20  # bytes of one line, newline excluded; longer lines are rejected unread
@@ -80,13 +81,16 @@ class ProtocolError(StuartError, ValueError):
         self.request_id = request_id
 
 
+_TO_LINE = compact_encoder(ensure_ascii=False)  # made once: json.dumps builds an encoder per call
+
+
 def encode(message: dict[str, Any]) -> bytes:
     """One message as one line of UTF-8 JSON, newline included.
 
     ``json.dumps`` escapes control characters inside strings, so the only raw newline in the
     output is the terminating one.
     """
-    return (to_json(message, separators=(",", ":"), ensure_ascii=False) + "\n").encode()
+    return (_TO_LINE(message) + "\n").encode()
 
 
 def decode(line: bytes | str) -> dict[str, Any]:
@@ -97,35 +101,46 @@ def decode(line: bytes | str) -> dict[str, Any]:
     else). Size and nesting are checked before the JSON parser runs, so its recursion can never
     be reached by a deep line; NaN, Infinity and numbers that overflow a float are refused.
     """
+    return _decode(line)[0]
+
+
+def decode_daemon_message(line: bytes | str) -> dict[str, Any]:
+    """:func:`decode` then :func:`check_daemon_message`, the way the framework reads a daemon's
+    line: the same verdict, but the walk for ``pose`` objects only runs when the line's text
+    could hold such a key (every line of every daemon passes here, a pose is in few of them)."""
+    message, text = _decode(line)
+    # a key can only be one of POSE_KEYS if the text spells it, or spells anything with \u escapes
+    return _check_daemon_message(message, poses="pose" in text or "\\u" in text)
+
+
+def _decode(line: bytes | str) -> tuple[dict[str, Any], str]:
+    """The message and the text it was parsed from. Every line of every daemon and every
+    request passes here, so the checks are written inline, and the walks over every value run
+    only when the text shows they may find something."""
     if len(line) > MAX_LINE + 1:
         raise ProtocolError(f"line of {len(line)} bytes is longer than the {MAX_LINE}-byte limit")
-    text = _text(line)
-    _check_depth(text)
+    if isinstance(line, str):
+        text, strings = line, True  # a str may hold lone surrogates: check every string
+    else:
+        try:
+            text = bytes(line).decode("utf-8")
+        except UnicodeDecodeError as e:
+            raise ProtocolError(f"not JSON: not UTF-8 ({e.reason} at byte {e.start})") from None
+        # valid UTF-8 decodes to no lone surrogate: only a \uD8xx escape can bring one in
+        strings = "\\ud" in text or "\\uD" in text
+    if nesting_depth(text, MAX_DEPTH) > MAX_DEPTH:
+        raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
     try:
-        message = json.loads(text, parse_constant=_refuse_constant)
+        message = _PARSE(text)
     except (ValueError, RecursionError) as e:  # JSONDecodeError, and ints past Python's digit limit
         raise ProtocolError(f"not JSON: {e}") from None
     if not isinstance(message, dict):
         if isinstance(message, _NonFinite):
             raise ProtocolError(f"{message.text} is not a number the protocol carries (numbers must be finite)")
         raise ProtocolError(f"expected a JSON object, got {type(message).__name__}")
-    _check_values(message, _may_hold_surrogates(line, text))
-    return message
-
-
-def _text(line: bytes | str) -> str:
-    if isinstance(line, str):
-        return line
-    try:
-        return bytes(line).decode("utf-8")
-    except UnicodeDecodeError as e:
-        raise ProtocolError(f"not JSON: not UTF-8 ({e.reason} at byte {e.start})") from None
-
-
-def _check_depth(text: str) -> None:
-    """Refuse nesting deeper than :data:`MAX_DEPTH` without recursion (stuart_bt.core.jsonfile)."""
-    if nesting_depth(text, MAX_DEPTH) > MAX_DEPTH:
-        raise ProtocolError(f"nested deeper than {MAX_DEPTH} levels")
+    if strings or _may_hold_non_finite(text):
+        _check_values(message, strings)
+    return message, text
 
 
 class _NonFinite:
@@ -140,10 +155,23 @@ def _refuse_constant(name: str) -> _NonFinite:
     return _NonFinite(name)
 
 
-def _may_hold_surrogates(line: bytes | str, text: str) -> bool:
-    """Valid UTF-8 bytes decode to no surrogates; only a ``\\uD8xx`` escape (or a str line) can
-    bring one in, so most lines skip the per-string check."""
-    return isinstance(line, str) or "\\ud" in text or "\\uD" in text
+# Built once: json.loads given a hook builds a new decoder on every call, which costs more than
+# parsing a short line.
+_PARSE = json.JSONDecoder(parse_constant=_refuse_constant).decode
+# A float literal that may overflow to infinity has a positive exponent of three digits or more,
+# or a mantissa of more than 200 digits (under 10**200 times at most 10**99 is still finite).
+# Digits inside strings may match too; that only costs the walk that then finds nothing. Two
+# patterns, not one alternation: each alone is several times faster.
+_LONG_EXPONENT = re.compile(r"[eE]\+?[0-9]{3}")
+_LONG_MANTISSA = re.compile(r"[0-9]{200}")
+
+
+def _may_hold_non_finite(text: str) -> bool:
+    """Whether parsing ``text`` can have produced a NaN or an infinity: NaN and Infinity are bare
+    words JSON cannot escape, and an overflowing number needs a long exponent or mantissa. When
+    this says no, the walk over every value would find nothing, so it is skipped."""
+    return ("NaN" in text or "Infinity" in text or _LONG_EXPONENT.search(text) is not None
+            or _LONG_MANTISSA.search(text) is not None)
 
 
 def _check_values(message: dict[str, Any], strings: bool) -> None:
@@ -194,13 +222,18 @@ def check_daemon_message(message: dict[str, Any]) -> dict[str, Any]:
     """The schema of a daemon -> framework line (docs/protocol.md): its type, its fields' types,
     and every ``pose`` object in it (finite x, y, yaw), so nothing malformed reaches the leaves
     or the world state. Returns the message; raises :class:`ProtocolError`."""
+    return _check_daemon_message(message, poses=True)
+
+
+def _check_daemon_message(message: dict[str, Any], poses: bool) -> dict[str, Any]:
     kind = message.get("type")
     check = _SCHEMAS.get(kind) if isinstance(kind, str) else None
     if check is None:
         raise ProtocolError(f"message of unknown type {kind!r}", _id_of(message))
     try:
         check(message)
-        _check_poses(message)
+        if poses:
+            _check_poses(message)
     except ProtocolError as e:
         raise ProtocolError(f"{kind}: {e.reason}", _id_of(message)) from None
     return message
@@ -236,9 +269,15 @@ def _check_ready(m: dict[str, Any]) -> None:
         raise ProtocolError("'commands' must be a list of strings")
 
 
-def _check_reply(m: dict[str, Any], body: str, optional: bool) -> None:
+_REPLY_BODY = {ACCEPTED: "data", PROGRESS: "data", DONE: "result"}  # an optional object in each
+
+
+def _check_reply(m: dict[str, Any]) -> None:
+    body = _REPLY_BODY[m["type"]]
+    if type(m.get("id")) is str and type(m.get(body, {})) is dict:
+        return  # the usual reply, as the parser builds it; anything else is looked at closely
     _field(m, "id", str)
-    _field(m, body, dict, optional)
+    _field(m, body, dict, optional=True)
 
 
 def _check_error(m: dict[str, Any]) -> None:
@@ -264,9 +303,9 @@ def _check_log(m: dict[str, Any]) -> None:
 
 _SCHEMAS = {
     READY: _check_ready,
-    ACCEPTED: lambda m: _check_reply(m, "data", True),
-    PROGRESS: lambda m: _check_reply(m, "data", True),
-    DONE: lambda m: _check_reply(m, "result", True),
+    ACCEPTED: _check_reply,
+    PROGRESS: _check_reply,
+    DONE: _check_reply,
     ERROR: _check_error,
     HEARTBEAT: _check_heartbeat,
     LOG: _check_log,
@@ -380,6 +419,9 @@ class LineBuffer:
         self._skipping = False  # inside an oversize line, waiting for its newline
 
     def feed(self, data: bytes) -> list[bytes | Oversize]:
+        if not self._pending and not self._skipping and len(data) <= self._limit and data.endswith(b"\n"):
+            # the usual read: whole lines, none of them too long (the whole read is not)
+            return [line for line in bytes(data).split(b"\n")[:-1] if line.strip()]
         out: list[bytes | Oversize] = []
         start = 0
         while True:

@@ -20,7 +20,7 @@ import atexit
 import contextlib
 import json
 import os
-import selectors
+import select
 import signal
 import subprocess
 import sys
@@ -69,6 +69,29 @@ class _Daemon:
         return self.proc
 
 
+class _Outputs:
+    """The daemons' output pipes, waited on with ``select.poll`` itself: the selectors module's
+    wrapper around it was a measurable share of a round trip (docs/protocol.md)."""
+
+    def __init__(self) -> None:
+        self._poller = select.poll()
+        self._daemons: dict[int, _Daemon] = {}
+
+    def add(self, fd: int, daemon: _Daemon) -> None:
+        self._poller.register(fd, select.POLLIN)
+        self._daemons[fd] = daemon
+
+    def remove(self, fd: int) -> None:
+        """Stop watching ``fd`` (nothing happens if it is not watched)."""
+        if self._daemons.pop(fd, None) is not None:
+            self._poller.unregister(fd)
+
+    def ready(self, timeout: float) -> list[_Daemon]:
+        """The daemons with output (or an end of output) to read, waiting up to ``timeout`` s."""
+        daemons = self._daemons
+        return [daemons[fd] for fd, _events in self._poller.poll(timeout * 1000.0)]
+
+
 class Supervisor:
     """The daemons of one run: ``backend`` (dry, sim, unitree) for every family."""
 
@@ -103,13 +126,14 @@ class Supervisor:
         self.heartbeat_period = heartbeat_period
         self.watchdog = watchdog
         self._next_keep_alive = 0.0
+        self._next_check = 0.0  # wall time the health checks are next due in wait()
         self.programs = dict(programs or {})
         self.run_dir = Path(run_dir) if run_dir else Path(tempfile.mkdtemp(prefix="stuart_bt-daemons-"))
         self.run_dir.mkdir(parents=True, exist_ok=True)
         self._daemons = {
             f: _Daemon(f, DaemonClient(f, events), self.run_dir / f"{f}.stderr.log") for f in families
         }
-        self._selector = selectors.DefaultSelector()
+        self._outputs = _Outputs()
         self._zombies: list[subprocess.Popen[bytes]] = []  # killed, not yet reaped
         self._started = False
         self._closed = False
@@ -151,20 +175,30 @@ class Supervisor:
     def poll(self) -> None:
         """Read what the daemons sent, then check for crashes, hangs and due restarts (no blocking)."""
         if not self._closed:
-            self._poll(self._selector.select(0))
+            self._poll(self._outputs.ready(0))
 
     def wait(self, request: Request, timeout: float | None = 10.0) -> Request:
         """Block until ``request`` finishes or ``timeout`` wall seconds pass (then it comes back
-        unfinished: check ``.finished``), polling every daemon meanwhile."""
+        unfinished: check ``.finished``), polling every daemon meanwhile.
+
+        A daemon's death or flood is acted on as soon as its output shows it; the checks that
+        only time can trigger (a hang, a due restart) run at least every :attr:`check_period`.
+        Running them on every wake-up instead cost as much as the round trip's own work."""
         deadline = time.monotonic() + (timeout if timeout is not None else float("inf"))
-        check = min(0.05, self.heartbeat_timeout / 4)
-        self.poll()
-        while not request.finished and not self._closed:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
+        block = 0.0 if request.finished else self.check_period  # a finished request: one look
+        # No look before blocking: select returns as soon as a reply is there, and a look at
+        # once (the reply is never there yet) cost a second select and a second round of checks.
+        while not self._closed:
+            ready = self._outputs.ready(max(0.0, min(deadline - time.monotonic(), block)))
+            now = self._poll(ready) if time.monotonic() >= self._next_check else self._read(ready)
+            if request.finished or now >= deadline:
                 break
-            self._poll(self._selector.select(min(remaining, check)))
         return request
+
+    @property
+    def check_period(self) -> float:
+        """Wall seconds between two health checks while :meth:`wait` blocks."""
+        return min(0.05, self.heartbeat_timeout / 4)
 
     def stop_all(self) -> list[Request]:
         """Send ``stop`` to every live daemon at once; the handles finish as they acknowledge."""
@@ -184,10 +218,10 @@ class Supervisor:
             d.client.close_input()
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline and any(d.proc and d.proc.poll() is None for d in live):
-            for key, _ in self._selector.select(0.02):
-                key.data.client.poll()
-                if key.data.client.eof:
-                    self._selector.unregister(key.fd)
+            for d in self._outputs.ready(0.02):
+                d.client.poll()
+                if d.client.eof:
+                    self._outputs.remove(d.client.fileno())
         for d in live:  # replies that arrived with the exit
             d.client.poll()
         for sig, wait in ((signal.SIGTERM, KILL_WAIT), (signal.SIGKILL, None)):
@@ -206,7 +240,6 @@ class Supervisor:
         for proc in self._zombies:
             proc.wait()
         self._zombies.clear()
-        self._selector.close()
 
     def __enter__(self) -> Supervisor:
         self.start()
@@ -244,7 +277,7 @@ class Supervisor:
         os.set_blocking(to_daemon, False)
         os.set_blocking(from_daemon, False)
         d.client.attach(to_daemon, from_daemon)
-        self._selector.register(from_daemon, selectors.EVENT_READ, d)
+        self._outputs.add(from_daemon, d)
         d.phase, d.spawned_at, d.restart_at = "starting", time.monotonic(), None
         restart = f", restart after {d.failures} loss(es)" if d.failures else ""
         self.events.publish("daemon_state", family=d.family, state="starting", reason=f"pid {d.proc.pid}{restart}",
@@ -255,8 +288,8 @@ class Supervisor:
         problems: list[str] = []
         waiting = list(self._daemons.values())
         while waiting:
-            for key, _ in self._selector.select(max(0.0, min(0.05, deadline - time.monotonic()))):
-                key.data.client.poll()
+            for d in self._outputs.ready(max(0.0, min(0.05, deadline - time.monotonic()))):
+                d.client.poll()
             for d in list(waiting):
                 if d.client.ready:
                     self._mark_ready(d, time.monotonic())
@@ -272,18 +305,32 @@ class Supervisor:
         if problems:
             raise DaemonStartError("; ".join(problems))
 
-    def _poll(self, ready: list[tuple[selectors.SelectorKey, int]]) -> None:
-        for key, _ in ready:
-            key.data.client.poll()
+    def _poll(self, ready: list[_Daemon]) -> float:
+        """Read, then check every daemon's health (and reap the killed ones); returns the time
+        the checks ran at."""
+        now = self._read(ready)
+        self._next_check = now + self.check_period
+        for d in self._daemons.values():
+            self._check(d, now)
+        if self._zombies:
+            self._zombies = [z for z in self._zombies if z.poll() is None]
+        return now
+
+    def _read(self, ready: list[_Daemon]) -> float:
+        """Take in what the ready daemons wrote and act at once on what their output shows (an
+        end of output, a flood of bad lines, READY); keep the watchdog fed. Returns the time
+        after reading."""
+        for d in ready:
+            d.client.poll()
+            if d.client.eof or d.client.faulty or (d.phase == "starting" and d.client.ready):
+                self._check(d, time.monotonic())
         now = time.monotonic()
         if self.watchdog > 0 and now >= self._next_keep_alive:
             self._next_keep_alive = now + self.watchdog / 4
             for d in self._daemons.values():
                 if d.phase == "ready":
                     d.client.keep_alive()
-        for d in self._daemons.values():
-            self._check(d, now)
-        self._zombies = [z for z in self._zombies if z.poll() is None]
+        return now
 
     def _check(self, d: _Daemon, now: float) -> None:
         if d.phase == "down":
@@ -366,8 +413,7 @@ class Supervisor:
         return delay
 
     def _disconnect(self, d: _Daemon, code: str, reason: str) -> list[Request]:
-        if d.client.fileno() in self._selector.get_map():
-            self._selector.unregister(d.client.fileno())
+        self._outputs.remove(d.client.fileno())
         return d.client.detach(code, reason)
 
     def _exit_reason(self, d: _Daemon) -> str:
