@@ -54,16 +54,25 @@ def poll_at_20hz(sup: Supervisor, until, timeout: float = 3.0) -> float:
 
 
 def wait_until_dead(pid: int, timeout: float = 5.0) -> None:
-    """Until the kernel has finished the process (a zombie waiting for the supervisor, or gone)."""
+    """Until the kernel has finished the process: every thread of it a zombie or gone. The
+    leader of a threaded daemon shows ``Z`` while its other threads are still exiting; its pipes
+    close, and the supervisor can reap it, only once the last of them has."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
-        try:
-            with open(f"/proc/{pid}/stat") as f:
-                if f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X"):
-                    return
-        except FileNotFoundError:
+        if all(state in ("Z", "X") for state in _thread_states(pid)):
             return
         time.sleep(0.005)
+
+
+def _thread_states(pid: int) -> list[str]:
+    """The state letter of every thread of ``pid`` (none when it is gone)."""
+    states = []
+    for task in Path(f"/proc/{pid}/task").glob("*"):
+        try:
+            states.append((task / "stat").read_text().rsplit(")", 1)[1].split()[0])
+        except (FileNotFoundError, ProcessLookupError):
+            continue
+    return states
     raise AssertionError(f"process {pid} still alive after SIGKILL")
 
 

@@ -96,6 +96,7 @@ class DaemonClient:
         # called with each heartbeat's state, in line order with the replies (which go to events)
         self.state_listeners: list[Callable[[dict[str, Any]], None]] = []
         self.eof = False  # the current process closed its output (it died or is dying)
+        self.hung_up = False  # the last poll of the pipe said the writer closed it (set by the supervisor)
         self._prefix = id_prefix
         self._ids = itertools.count(1)
         self._read_fd: int | None = None
@@ -237,10 +238,11 @@ class DaemonClient:
                 return
             for line in self._lines.feed(data):
                 self._handle(line)
-            if len(data) < READ_CHUNK:
+            if len(data) < READ_CHUNK and not self.hung_up:
                 # A pipe returns less than asked only when it is empty: reading again would only
-                # raise EAGAIN. Whatever comes next (EOF included) makes the fd readable again,
-                # and a daemon that exited is found by the supervisor's exit check meanwhile.
+                # raise EAGAIN. Whatever comes next makes the fd readable again. When the daemon
+                # has closed its end (hung_up), read on to the end of output, so its death is seen
+                # in this very poll, not the next one.
                 return
 
     def _handle(self, line: bytes | p.Oversize) -> None:

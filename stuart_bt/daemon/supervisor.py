@@ -89,7 +89,15 @@ class _Outputs:
     def ready(self, timeout: float) -> list[_Daemon]:
         """The daemons with output (or an end of output) to read, waiting up to ``timeout`` s."""
         daemons = self._daemons
-        return [daemons[fd] for fd, _events in self._poller.poll(timeout * 1000.0)]
+        ready = []
+        for fd, events in self._poller.poll(timeout * 1000.0):
+            d = daemons[fd]
+            d.client.hung_up = bool(events & _HANG_UP)  # the daemon closed its end: read to the end now
+            ready.append(d)
+        return ready
+
+
+_HANG_UP = select.POLLHUP | select.POLLERR
 
 
 class Supervisor:
