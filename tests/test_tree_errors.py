@@ -154,9 +154,29 @@ def test_path_must_exist_relative_to_the_tree_file():
                      f"file 'gestures/bow.json' not found (relative to {bad.as_posix()})")]
 
 
-def test_unknown_marker_is_checked_against_the_marker_file():
+KNOWN_MARKERS = ('the markers are kitchen, dock "Charging dock", station_1 "Robot arm demo", station_2 "3D printers", '
+                 'station_3 "Workbench"')
+
+
+def test_unknown_marker_is_checked_against_the_marker_file_and_lists_its_markers():
     assert one_error("root: {navigate: kitchn}\n", markers_file=MARKERS) == (
-        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'kitchn' (did you mean 'kitchen'?)")
+        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'kitchn' (did you mean 'kitchen'?); "
+        + KNOWN_MARKERS)
+
+
+def test_a_misspelt_display_name_is_suggested_as_written():
+    assert one_error("root: {navigate: Robot arms demo}\n", markers_file=MARKERS) == (
+        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'Robot arms demo' "
+        f"(did you mean 'Robot arm demo'?); {KNOWN_MARKERS}")
+
+
+def test_a_name_that_fits_two_markers_asks_for_the_marker_name(tmp_path):
+    markers = tmp_path / "markers.json"
+    markers.write_text('{"markers": {"lab": {"x": 0, "y": 0}, "room_2": {"x": 1, "y": 0, "display_name": "Lab"}}}')
+    assert one_error("root: {navigate: LAB}\n", markers_file=markers) == (
+        "t.yaml:1:18: t: parameter 'marker' for navigate: marker 'LAB' could be any of lab, room_2 \"Lab\"; "
+        "write the marker's name")
+    assert load_tree_text("root: {navigate: lab}\n", markers_file=markers).root.params == {"marker": "lab"}
 
 
 def test_markers_are_not_checked_without_a_marker_file():
@@ -468,7 +488,7 @@ def test_include_arguments_are_checked_at_the_with_entry():
         (f"{bad}:6:40: bad_args/station_1: argument 'title' for {shown}: expected text, got 5 "
         "(quote it to make it text)"),
         (f"{bad}:9:23: bad_args/station_2/navigate: parameter 'marker' for navigate: unknown marker 'kitchn' "
-        "(did you mean 'kitchen'?)"),
+        f"(did you mean 'kitchen'?); {KNOWN_MARKERS}"),
         (f"{bad}:9:53: bad_args/station_2: argument 'wave' for {shown}: unknown gesture 'wavy' "
         "(did you mean 'wave'?)"),
         f"{bad}:10:16: bad_args/staton: include file '../staton.yaml' not found (did you mean 'station.yaml'?)",

@@ -52,12 +52,17 @@ class Head:
 
 @dataclass(frozen=True)
 class MarkerUse:
-    """A marker name to check once the marker file is known."""
+    """A marker name to check once the marker file is known (and to replace by the marker's
+    name when it was written as a display name)."""
 
     name: str
     location: Location
-    path: str
-    what: str
+    spec: NodeSpec
+    param: str
+
+    @property
+    def what(self) -> str:
+        return f"parameter {self.param!r} for {self.spec.kind}"
 
 
 OpenFile = Callable[[Path, str], TreeFile | None]
@@ -329,7 +334,7 @@ class NodeReader:
             self.log.add(where, f"parameter {param.name!r} for {spec.kind}: {message}", spec.path)
         if param.type == "marker" and not problems and not is_reference(val.value) \
                 and not template_names(val.value):
-            self.markers.append(MarkerUse(val.value, here, spec.path, f"parameter {param.name!r} for {spec.kind}"))
+            self.markers.append(MarkerUse(val.value, here, spec, param.name))
         return val if not problems else None
 
     def children(self, nodes: list[Node], scope: Scope, parent: str, depth: int) -> list[NodeSpec]:
