@@ -18,10 +18,10 @@ TREES = DATA / "trees"
 MARKERS = DATA / "markers.json"
 
 
-def errors(text: str, **kw) -> list[str]:
+def errors(text: str, file: str = "t.yaml", **kw) -> list[str]:
     """The error lines for ``text`` loaded as t.yaml (line 1 is the first line of ``text``)."""
     with pytest.raises(TreeLoadError) as caught:
-        load_tree_text(textwrap.dedent(text), file="t.yaml", **kw)
+        load_tree_text(textwrap.dedent(text), file=file, **kw)
     assert caught.value.errors and all(isinstance(e, TreeError) for e in caught.value.errors)
     return [str(e) for e in caught.value.errors]
 
@@ -471,10 +471,31 @@ def test_missing_tree_file(tmp_path):
 
 # --- includes --------------------------------------------------------------------------------
 
-def test_missing_include_file_suggests_a_sibling_file(monkeypatch):
+def test_missing_include_file_says_where_it_looked_and_suggests_a_sibling_file(monkeypatch):
     monkeypatch.chdir(TREES)
     assert one_error("root: {include: staton.yaml}\n") == (
-        "t.yaml:1:17: t: include file 'staton.yaml' not found (did you mean 'station.yaml'?)")
+        f"t.yaml:1:17: t: include file 'staton.yaml' not found: looked for {TREES / 'staton.yaml'} (relative to "
+        f"the folder of t.yaml, {TREES}) (did you mean 'station.yaml'?)")
+    assert one_error("root: {include: sub/nothing.yaml}\n", file="<string>").endswith(
+        f"include file 'sub/nothing.yaml' not found: looked for {TREES / 'sub' / 'nothing.yaml'} (relative to "
+        f"the working folder, {TREES})")
+
+
+def test_a_missing_include_in_an_included_file_is_looked_for_beside_that_file(tmp_path):
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "outer.yaml").write_text("root: {include: ../inner/piece.yaml}\n")
+    tree = tmp_path / "main.yaml"
+    tree.write_text("root: {include: parts/outer.yaml}\n")
+    [line] = file_errors(tree)
+    parts = tmp_path / "parts"
+    assert line.endswith(f"include file '../inner/piece.yaml' not found: looked for {tmp_path / 'inner' / 'piece.yaml'}"
+                         f" (relative to the folder of {parts / 'outer.yaml'}, {parts})")
+
+
+def test_a_missing_include_given_as_an_absolute_path_names_it(tmp_path):
+    missing = tmp_path / "gone.yaml"
+    assert one_error(f"root: {{include: {missing}}}\n") == (
+        f"t.yaml:1:17: t: include file '{missing}' not found: looked for {missing}")
 
 
 def test_include_arguments_are_checked_at_the_with_entry():
@@ -491,7 +512,8 @@ def test_include_arguments_are_checked_at_the_with_entry():
         f"(did you mean 'kitchen'?); {KNOWN_MARKERS}"),
         (f"{bad}:9:53: bad_args/station_2: argument 'wave' for {shown}: unknown gesture 'wavy' "
         "(did you mean 'wave'?)"),
-        f"{bad}:10:16: bad_args/staton: include file '../staton.yaml' not found (did you mean 'station.yaml'?)",
+        (f"{bad}:10:16: bad_args/staton: include file '../staton.yaml' not found: looked for {TREES / 'staton.yaml'} "
+         f"(relative to the folder of {bad}, {bad.parent}) (did you mean 'station.yaml'?)"),
     ]
 
 
