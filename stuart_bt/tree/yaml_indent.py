@@ -25,7 +25,8 @@ from dataclasses import dataclass
 import yaml
 
 _FAST_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)  # only to try fixes: libyaml is ~20x faster
-MAX_TRIED_TEXT = 4_000_000  # characters parsed while trying fixes, at most (about a second with libyaml)
+# Characters parsed while trying fixes, at most: about a second, with libyaml or without it.
+MAX_TRIED_TEXT = 2_000_000 if _FAST_LOADER is not yaml.SafeLoader else 100_000
 MAX_FULL_TRIES = 8  # best fixes checked against the lines after the problem too
 MAX_PART_BLOCKS = 3  # a line moved with its first 1, 2 or 3 children, besides alone and with all
 NEARBY_LINES = 3  # content lines before the problem that may be the mistaken one
