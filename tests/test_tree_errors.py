@@ -7,7 +7,9 @@ import textwrap
 from pathlib import Path
 
 import pytest
+import yaml
 
+from stuart_bt.tree import yaml_indent
 from stuart_bt.tree.errors import TreeError, TreeLoadError
 from stuart_bt.tree.loader import load_tree, load_tree_text
 from stuart_bt.tree.spec import Location
@@ -362,6 +364,12 @@ def test_an_indentation_mistake_is_reported_at_the_mis_indented_line(text, line,
     to = f"indent it{UNDER} {spaces(should_be)}" if should_be else f"start it{UNDER} at the beginning of the line"
     assert re.search(to, error), error
     assert "YAML syntax error" not in error and "<block" not in error
+
+
+def test_the_indentation_search_works_without_libyaml(monkeypatch):
+    monkeypatch.setattr(yaml_indent, "_FAST_LOADER", yaml.SafeLoader)
+    assert one_error("blackboard:\n   battery: 80\n  visitor: Ada\nroot: {stop: {}}\n").startswith(
+        "t.yaml:2:4: wrong indentation: 'battery: 80' is indented 3 spaces")
 
 
 def test_the_indentation_message_names_the_lines_the_mistaken_one_belongs_with():
