@@ -282,6 +282,8 @@ BAD_TREES = [
     pytest.param("mistyped_param.yaml", [Problem("two", "parameter 'times' for retry: expected an integer")],
                  id="mistyped param"),
     pytest.param("tab_indented.yaml", [Problem("\t", "tab")], id="tab-indented"),
+    pytest.param("mis_indented.yaml", [Problem("name: greet", "wrong indentation: 'name: greet' is indented 5 spaces")],
+                 id="mis-indented"),
     pytest.param("duplicate_keys.yaml", [Problem("text", "duplicate key 'text' (first defined at line 5)", 2)],
                  id="duplicate keys"),
     pytest.param("unknown_marker.yaml", [Problem("kitchn", "unknown marker 'kitchn'", suggestion="kitchen")],

@@ -42,9 +42,22 @@ blackboard: {goal: kitchn}
 root: {navigate: {name: go, marker: $goal}}
 """)
     assert result.status == "FAILURE"
-    assert result.failure("go") == "unknown marker 'kitchn' (did you mean 'kitchen'?)"
+    assert result.failure("go").startswith(
+        "unknown marker 'kitchn' (did you mean 'kitchen'?); the markers are entrance, charging_dock, kitchen, "
+        'bathroom, workbench, station_1 "Robot arms"')
     assert result.events("command") == []
     result.assert_final_pose(0.0, 0.0)
+
+
+def test_a_display_name_from_the_blackboard_walks_to_its_marker():
+    result = run_tree(text="""
+blackboard: {goal: electronics bench}
+root: {navigate: {name: go, marker: $goal}}
+""")
+    result.assert_success()
+    [command] = result.commands("navigate")
+    assert command["args"]["marker"] == "station_4"
+    result.assert_final_pose(6.5, 0.5)
 
 
 def test_speak_without_waiting_overlaps_the_next_leaf():

@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import shutil
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -264,3 +266,25 @@ def test_what_the_bridge_hears_is_acted_on_once_and_published_on_audio_msg(tmp_p
     assert [(u["source"], u["text"]) for u in said] == [("stdin", published["data"])], \
         "heard once, and the bridge's own /audio_msg message was not taken as a second command"
     assert [i["target"] for i in intents(client)] == ["bathroom"]
+
+
+def test_the_rclpy_example_of_docs_ros_md_gets_the_intent_and_the_reply_from_a_bridge(tmp_path):
+    """docs/ros.md shows rclpy first (the venv has no ros2 command): its example, run as written."""
+    section = (Path(__file__).resolve().parent.parent / "docs" / "ros.md").read_text(encoding="utf-8")
+    example = re.search(r"```python\n(.*?)```", section.split("## From Python (rclpy)", 1)[1], re.S)
+    assert example is not None
+    script = tmp_path / "kitchen_client.py"
+    script.write_text(example.group(1), encoding="utf-8")
+    with BridgeProcess("--backend", "dry") as bridge:
+        bridge.up()
+        try:
+            done = subprocess.run([sys.executable, str(script)], env=ros_env(), capture_output=True, text=True,
+                                  timeout=60)
+        except subprocess.TimeoutExpired as e:  # run() has killed it
+            raise AssertionError(f"the example did not finish: {e.stdout!r} {e.stderr!r}") from None
+        assert bridge.stop() == 0
+    assert done.returncode == 0, done.stderr
+    printed = done.stdout.splitlines()
+    [intent] = [line for line in printed if line.startswith("intent ")]
+    assert "'action': 'navigate_to_marker'" in intent and "'target': 'kitchen'" in intent, intent
+    assert any(line.startswith("says ") and "kitchen" in line.lower() for line in printed), printed

@@ -2,24 +2,28 @@
 
 from __future__ import annotations
 
+import re
 import textwrap
 from pathlib import Path
 
 import pytest
+import yaml
 
+from stuart_bt.tree import yaml_indent
 from stuart_bt.tree.errors import TreeError, TreeLoadError
 from stuart_bt.tree.loader import load_tree, load_tree_text
 from stuart_bt.tree.spec import Location
+from stuart_bt.tree.yaml_source import read_text
 
 DATA = Path(__file__).parent / "data"
 TREES = DATA / "trees"
 MARKERS = DATA / "markers.json"
 
 
-def errors(text: str, **kw) -> list[str]:
+def errors(text: str, file: str = "t.yaml", **kw) -> list[str]:
     """The error lines for ``text`` loaded as t.yaml (line 1 is the first line of ``text``)."""
     with pytest.raises(TreeLoadError) as caught:
-        load_tree_text(textwrap.dedent(text), file="t.yaml", **kw)
+        load_tree_text(textwrap.dedent(text), file=file, **kw)
     assert caught.value.errors and all(isinstance(e, TreeError) for e in caught.value.errors)
     return [str(e) for e in caught.value.errors]
 
@@ -152,9 +156,29 @@ def test_path_must_exist_relative_to_the_tree_file():
                      f"file 'gestures/bow.json' not found (relative to {bad.as_posix()})")]
 
 
-def test_unknown_marker_is_checked_against_the_marker_file():
+KNOWN_MARKERS = ('the markers are kitchen, dock "Charging dock", station_1 "Robot arm demo", station_2 "3D printers", '
+                 'station_3 "Workbench"')
+
+
+def test_unknown_marker_is_checked_against_the_marker_file_and_lists_its_markers():
     assert one_error("root: {navigate: kitchn}\n", markers_file=MARKERS) == (
-        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'kitchn' (did you mean 'kitchen'?)")
+        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'kitchn' (did you mean 'kitchen'?); "
+        + KNOWN_MARKERS)
+
+
+def test_a_misspelt_display_name_is_suggested_as_written():
+    assert one_error("root: {navigate: Robot arms demo}\n", markers_file=MARKERS) == (
+        "t.yaml:1:18: t: parameter 'marker' for navigate: unknown marker 'Robot arms demo' "
+        f"(did you mean 'Robot arm demo'?); {KNOWN_MARKERS}")
+
+
+def test_a_name_that_fits_two_markers_asks_for_the_marker_name(tmp_path):
+    markers = tmp_path / "markers.json"
+    markers.write_text('{"markers": {"lab": {"x": 0, "y": 0}, "room_2": {"x": 1, "y": 0, "display_name": "Lab"}}}')
+    assert one_error("root: {navigate: LAB}\n", markers_file=markers) == (
+        "t.yaml:1:18: t: parameter 'marker' for navigate: marker 'LAB' could be any of lab, room_2 \"Lab\"; "
+        "write the marker's name")
+    assert load_tree_text("root: {navigate: lab}\n", markers_file=markers).root.params == {"marker": "lab"}
 
 
 def test_markers_are_not_checked_without_a_marker_file():
@@ -308,6 +332,94 @@ def test_tabs_get_a_friendly_message():
     assert one_error("root:\n\tstop: {}\n") == "t.yaml:2:1: tab characters are not allowed for indentation; use spaces"
 
 
+# One mis-indented line each; PyYAML stops at it, a line after it, or many lines after it.
+MIS_INDENTED = [
+    pytest.param("root:\n  sequence:\n    name: tour\n      children:\n      - speak: hi\n", 4, 6, 4,
+                 id="key deeper than the key above"),
+    pytest.param("blackboard:\n   battery: 80\n  visitor: Ada\nroot: {stop: {}}\n", 2, 3, 2,
+                 id="first key of a block too deep: PyYAML stops a line late"),
+    pytest.param("blackboard:\nbattery: 80\n  visitor: Ada\nroot: {stop: {}}\n", 2, 0, 2,
+                 id="first key of a block not under its key: PyYAML stops a line late"),
+    pytest.param("root:\n  sequence:\n    - speak: a\n     - speak: b\n    - speak: c\n", 4, 5, 4,
+                 id="list item one space deep"),
+    pytest.param("root:\n  sequence:\n     - speak: a\n       wait: false\n" + "    - speak: b\n" * 20, 3, 5, 4,
+                 id="first list item with its options one space deep: PyYAML stops twenty lines on"),
+    pytest.param("root:\n  speak:\n    text: hi\n   wait: true\n", 4, 3, 4, id="option one space short"),
+    pytest.param("description: x\n root:\n  stop: {}\n", 2, 1, 0, id="top-level key indented"),
+    pytest.param("root:\n  retry:\n    times: 2\n      child:\n        stop: {}\n", 4, 6, 4,
+                 id="key with its block too deep"),
+]
+
+
+UNDER = r"( \(with the \d+ lines? under it\))?"
+
+
+@pytest.mark.parametrize(("text", "line", "indented", "should_be"), MIS_INDENTED)
+def test_an_indentation_mistake_is_reported_at_the_mis_indented_line(text, line, indented, should_be):
+    error = one_error(text)
+    shown = text.splitlines()[line - 1].strip()
+    spaces = lambda n: f"{n} space{'' if n == 1 else 's'}"  # noqa: E731
+    where = f"t.yaml:{line}:{indented + 1}"
+    assert error.startswith(f"{where}: wrong indentation: {shown!r} is indented {spaces(indented)}"), error
+    to = f"indent it{UNDER} {spaces(should_be)}" if should_be else f"start it{UNDER} at the beginning of the line"
+    assert re.search(to, error), error
+    assert "YAML syntax error" not in error and "<block" not in error
+
+
+def test_the_indentation_search_works_without_libyaml(monkeypatch):
+    monkeypatch.setattr(yaml_indent, "_FAST_LOADER", yaml.SafeLoader)
+    assert one_error("blackboard:\n   battery: 80\n  visitor: Ada\nroot: {stop: {}}\n").startswith(
+        "t.yaml:2:4: wrong indentation: 'battery: 80' is indented 3 spaces")
+
+
+def test_the_indentation_message_names_the_lines_the_mistaken_one_belongs_with():
+    assert one_error("blackboard:\n   battery: 80\n  visitor: Ada\nroot: {stop: {}}\n") == (
+        "t.yaml:2:4: wrong indentation: 'battery: 80' is indented 3 spaces, but the keys it belongs with, like "
+        "'visitor: Ada' on line 3, are indented 2; indent it 2 spaces")
+    assert one_error("root:\n  retry:\n    times: 2\n      child:\n        stop: {}\n") == (
+        "t.yaml:4:7: wrong indentation: 'child:' is indented 6 spaces, but the keys it belongs with, like "
+        "'times: 2' on line 3, are indented 4; indent it (with the 1 line under it) 4 spaces")
+
+
+def test_every_line_of_the_examples_shifted_is_named_where_it_was_shifted():
+    """Shift each line of the tutorial trees by 1 or 2 spaces either way. Where that breaks the
+    YAML, the one error must be about indentation at that line; a few shifts are truly ambiguous
+    (a key between two blocks could belong to either), so 95% must be exact (PyYAML: 66%)."""
+    named, missed = 0, []
+    for tree in sorted((Path(__file__).parent.parent / "examples").glob("*/*.yaml")):
+        lines = tree.read_text(encoding="utf-8").splitlines()
+        for number, line in enumerate(lines, 1):
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            for shift in (-2, -1, 1, 2):
+                if shift < 0 and not line.startswith(" " * -shift):
+                    continue
+                shifted = [*lines[:number - 1], " " * shift + line if shift > 0 else line[-shift:], *lines[number:]]
+                source = read_text("\n".join(shifted), "t.yaml")
+                if source.root is not None:
+                    continue  # still YAML: the loader's checks speak
+                [first] = source.errors
+                assert first.location is not None and "YAML syntax error" not in first.message, str(first)
+                if first.location.line == number and "wrong indentation" in first.message:
+                    named += 1
+                else:
+                    missed.append(f"{tree.name}:{number} shifted {shift}: {first}")
+    assert named >= 100
+    assert named / (named + len(missed)) >= 0.95, "\n".join(missed)
+
+
+def test_structure_mistakes_that_are_not_indentation_are_said_in_words():
+    assert one_error("root:\n  speak: Note: this\n") == (
+        "t.yaml:2:14: ':' followed by a space starts a key, which cannot start here: put text that holds ': ' "
+        "in quotes, or start the key on its own line, lined up with its neighbours")
+    assert one_error("root:\n  sequence:\n    - navigate:\n      marker kitchen\n    - stop: {}\n") == (
+        "t.yaml:4:7: 'marker kitchen' stands where a key is expected but has no ':' after it; write 'key: value', "
+        "or indent it further if it continues the value above")
+    assert one_error("root:\n  sequence:\n    name: x\n    - speak: hi\n") == (
+        "t.yaml:4:5: '- speak: hi' is a list item, but it lines up with keys like 'name: x' on line 3: one block "
+        "is either all keys or all list items; put the list under a key of its own")
+
+
 def test_duplicate_keys_are_detected():
     assert one_error("root:\n  speak:\n    text: a\n    text: b\n") == (
         "t.yaml:4:5: duplicate key 'text' (first defined at line 3)")
@@ -367,10 +479,31 @@ def test_missing_tree_file(tmp_path):
 
 # --- includes --------------------------------------------------------------------------------
 
-def test_missing_include_file_suggests_a_sibling_file(monkeypatch):
+def test_missing_include_file_says_where_it_looked_and_suggests_a_sibling_file(monkeypatch):
     monkeypatch.chdir(TREES)
     assert one_error("root: {include: staton.yaml}\n") == (
-        "t.yaml:1:17: t: include file 'staton.yaml' not found (did you mean 'station.yaml'?)")
+        f"t.yaml:1:17: t: include file 'staton.yaml' not found: looked for {TREES / 'staton.yaml'} (relative to "
+        f"the folder of t.yaml, {TREES}) (did you mean 'station.yaml'?)")
+    assert one_error("root: {include: sub/nothing.yaml}\n", file="<string>").endswith(
+        f"include file 'sub/nothing.yaml' not found: looked for {TREES / 'sub' / 'nothing.yaml'} (relative to "
+        f"the working folder, {TREES})")
+
+
+def test_a_missing_include_in_an_included_file_is_looked_for_beside_that_file(tmp_path):
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "outer.yaml").write_text("root: {include: ../inner/piece.yaml}\n")
+    tree = tmp_path / "main.yaml"
+    tree.write_text("root: {include: parts/outer.yaml}\n")
+    [line] = file_errors(tree)
+    parts = tmp_path / "parts"
+    assert line.endswith(f"include file '../inner/piece.yaml' not found: looked for {tmp_path / 'inner' / 'piece.yaml'}"
+                         f" (relative to the folder of {parts / 'outer.yaml'}, {parts})")
+
+
+def test_a_missing_include_given_as_an_absolute_path_names_it(tmp_path):
+    missing = tmp_path / "gone.yaml"
+    assert one_error(f"root: {{include: {missing}}}\n") == (
+        f"t.yaml:1:17: t: include file '{missing}' not found: looked for {missing}")
 
 
 def test_include_arguments_are_checked_at_the_with_entry():
@@ -384,10 +517,11 @@ def test_include_arguments_are_checked_at_the_with_entry():
         (f"{bad}:6:40: bad_args/station_1: argument 'title' for {shown}: expected text, got 5 "
         "(quote it to make it text)"),
         (f"{bad}:9:23: bad_args/station_2/navigate: parameter 'marker' for navigate: unknown marker 'kitchn' "
-        "(did you mean 'kitchen'?)"),
+        f"(did you mean 'kitchen'?); {KNOWN_MARKERS}"),
         (f"{bad}:9:53: bad_args/station_2: argument 'wave' for {shown}: unknown gesture 'wavy' "
         "(did you mean 'wave'?)"),
-        f"{bad}:10:16: bad_args/staton: include file '../staton.yaml' not found (did you mean 'station.yaml'?)",
+        (f"{bad}:10:16: bad_args/staton: include file '../staton.yaml' not found: looked for {TREES / 'staton.yaml'} "
+         f"(relative to the folder of {bad}, {bad.parent}) (did you mean 'station.yaml'?)"),
     ]
 
 

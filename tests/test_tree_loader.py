@@ -12,6 +12,7 @@ from stuart_bt.tree.errors import TreeLoadError
 from stuart_bt.tree.loader import load_tree, load_tree_text
 from stuart_bt.tree.spec import Location, TreeSpec
 
+REPO = Path(__file__).parent.parent
 DATA = Path(__file__).parent / "data"
 TREES = DATA / "trees"
 MARKERS = DATA / "markers.json"
@@ -206,6 +207,27 @@ def test_included_roots_record_their_file():
 def test_includer_blackboard_values_win_and_the_rest_merge():
     spec = load_tree(TREES / "tour.yaml")
     assert spec.blackboard == {"battery": 90, "stations_seen": 0}
+
+
+@pytest.mark.parametrize("written", ["Electronics bench", "electronics BENCH", "ElectronicsBench",
+                                     "electronics_bench", "  electronics   bench ", "Station 4", "station_4"])
+def test_a_marker_can_be_named_by_its_display_name_in_any_case_and_spacing(written):
+    spec = load(f"""
+        markers: {REPO / "sim" / "maps" / "lab_markers.json"}
+        root:
+          sequence:
+            - navigate: {written!r}
+            - navigate: {{marker: {written!r}, tolerance: 0.2}}
+        """)
+    assert [n.params["marker"] for n in spec.walk() if n.kind == "navigate"] == ["station_4", "station_4"]
+
+
+def test_a_display_name_passed_to_an_include_becomes_the_marker_name():
+    spec = load(f"""
+        markers: {MARKERS}
+        root: {{include: {{file: {TREES / "station.yaml"}, with: {{where: 3D Printers, title: printers}}}}}}
+        """)
+    assert spec.find("t/navigate").params == {"marker": "station_2"}
 
 
 def test_included_marker_file_is_used_when_the_includer_has_none(tmp_path):

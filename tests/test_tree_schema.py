@@ -91,5 +91,5 @@ def test_leaf_kinds_carry_their_docs_for_editors():
     defs = tree_schema()["$defs"]
     assert defs["kind_navigate"]["description"].startswith("Walk to a named marker")
     mapping = defs["kind_navigate"]["anyOf"][1]
-    assert mapping["properties"]["marker"]["description"] == "Marker name from the marker file."
+    assert mapping["properties"]["marker"]["description"] == "Marker name or display name from the marker file."
     assert defs["kind_pick"]["anyOf"][1]["properties"]["arm"]["anyOf"][0] == {"enum": ["auto", "left", "right"]}

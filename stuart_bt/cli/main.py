@@ -32,19 +32,23 @@ class UserError(StuartError):
 # -- commands ----------------------------------------------------------------------------------------
 def cmd_validate(args: argparse.Namespace) -> int:
     from ..tree.errors import TreeLoadError
+    from ..tree.lint import tree_warnings
     from ..tree.loader import load_tree
 
     status = EXIT_OK
     for file in args.files:
         try:
-            load_tree(file, markers_file=args.markers)
+            spec = load_tree(file, markers_file=args.markers)
         except TreeLoadError as e:
             for error in e.errors:
                 print(error, file=sys.stderr)
             status = EXIT_FAILED
-        else:
-            if not args.quiet:
-                print(f"{file}: ok")
+            continue
+        warnings = tree_warnings(spec)
+        for warning in warnings:
+            print(warning, file=sys.stderr)
+        if not args.quiet:
+            print(f"{file}: ok" + (f" ({len(warnings)} warning{'s' if len(warnings) > 1 else ''})" if warnings else ""))
     return status
 
 

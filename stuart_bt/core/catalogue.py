@@ -81,7 +81,7 @@ LEAVES: dict[str, LeafSpec] = {
             "navigate",
             "Walk to a named marker, a map pose (x, y, yaw) or a body-relative offset (dx, dy, dyaw).",
             (
-                Param("marker", "marker", "Marker name from the marker file.", required=True),
+                Param("marker", "marker", "Marker name or display name from the marker file.", required=True),
                 Param("x", "number", "Map x in metres.", required=True),
                 Param("y", "number", "Map y in metres.", required=True),
                 Param("yaw", "angle", "Map heading in radians; default keeps the arrival heading.", default=None),

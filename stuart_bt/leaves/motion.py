@@ -7,6 +7,7 @@ from typing import Any
 
 from ..core.suggest import did_you_mean
 from ..core.world import Pose
+from ..maps.marker_names import UnknownMarker, find_marker
 from .base import LeafFailure, SkillLeaf
 
 
@@ -21,10 +22,11 @@ class Navigate(SkillLeaf):
             "yaw_tolerance": float(self.param("yaw_tolerance")),
         }
         if self.has("marker"):
-            name = str(self.param("marker"))
             markers = self.ctx.blackboard.world.markers
-            if name not in markers:
-                raise LeafFailure(f"unknown marker {name!r}{did_you_mean(name, markers)}")
+            try:  # a display name too: "$target" may hold "Electronics bench"
+                name = find_marker(str(self.param("marker")), markers)
+            except UnknownMarker as e:
+                raise LeafFailure(str(e)) from None
             marker = markers[name]
             args["marker"] = name
             args["pose"] = marker.pose.to_dict()

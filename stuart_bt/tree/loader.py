@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..core.suggest import did_you_mean
+from ..maps.marker_names import UnknownMarker, find_marker
 from ..maps.markers import MarkerFileError, load_markers
 from .errors import ErrorLog, TreeError, TreeLoadError
 from .include_params import Scope, base_dir_of, defaults
@@ -99,6 +99,7 @@ class _Session:
             self.log.add(self.markers_location, str(e))
             return
         for use in reader.markers:
-            if use.name not in markers:
-                self.log.add(use.location, f"{use.what}: unknown marker {use.name!r}"
-                             f"{did_you_mean(use.name, markers)}", use.path)
+            try:
+                use.spec.params[use.param] = find_marker(use.name, markers)
+            except UnknownMarker as e:
+                self.log.add(use.location, f"{use.what}: {e}", use.spec.path)

@@ -52,12 +52,17 @@ class Head:
 
 @dataclass(frozen=True)
 class MarkerUse:
-    """A marker name to check once the marker file is known."""
+    """A marker name to check once the marker file is known (and to replace by the marker's
+    name when it was written as a display name)."""
 
     name: str
     location: Location
-    path: str
-    what: str
+    spec: NodeSpec
+    param: str
+
+    @property
+    def what(self) -> str:
+        return f"parameter {self.param!r} for {self.spec.kind}"
 
 
 OpenFile = Callable[[Path, str], TreeFile | None]
@@ -329,7 +334,7 @@ class NodeReader:
             self.log.add(where, f"parameter {param.name!r} for {spec.kind}: {message}", spec.path)
         if param.type == "marker" and not problems and not is_reference(val.value) \
                 and not template_names(val.value):
-            self.markers.append(MarkerUse(val.value, here, spec.path, f"parameter {param.name!r} for {spec.kind}"))
+            self.markers.append(MarkerUse(val.value, here, spec, param.name))
         return val if not problems else None
 
     def children(self, nodes: list[Node], scope: Scope, parent: str, depth: int) -> list[NodeSpec]:
@@ -360,7 +365,8 @@ class NodeReader:
         target = scope.base_dir / given
         if not is_file(target):
             candidates = [n for n in names_in(target.parent) if n.endswith((".yaml", ".yml"))]
-            self.log.add(here, f"include file {given!r} not found{did_you_mean(target.name, candidates)}", path)
+            self.log.add(here, f"include file {given!r} not found: {_looked_for(target, given, scope)}"
+                         f"{did_you_mean(target.name, candidates)}", path)
             return None
         resolved = target.resolve()
         roots = include_roots(scope)
@@ -397,6 +403,16 @@ class NodeReader:
         except BadValue as e:
             self.log.add(e.error.location, e.error.message, path)
             return None
+
+
+def _looked_for(target: Path, given: str, scope: Scope) -> str:
+    """Where a missing include was looked for: the absolute path, and what ``given`` was taken
+    relative to, so a user sees at once whether the folder or the name is wrong."""
+    tried = os.path.abspath(target)
+    if os.path.isabs(given):
+        return f"looked for {tried}"
+    origin = "the working folder" if scope.file.startswith("<") else f"the folder of {scope.file}"
+    return f"looked for {tried} (relative to {origin}, {os.path.abspath(scope.base_dir)})"
 
 
 def _unknown_kind(name: str) -> str:

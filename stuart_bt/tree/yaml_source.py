@@ -20,6 +20,7 @@ from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 from ..core.jsonfile import NotARegularFile, read_limited
 from .errors import ErrorLog, TreeError
 from .spec import Location
+from .yaml_errors import syntax_error
 
 MAX_BYTES = 1024 * 1024
 MAX_DEPTH = 100
@@ -129,7 +130,7 @@ def read_text(text: str, file: str) -> Source:
     except RecursionError:
         return Source(file, None, [TreeError(Location(file, 1, 1), f"nesting deeper than {MAX_DEPTH} levels")])
     except yaml.MarkedYAMLError as e:
-        return Source(file, None, [_syntax_error(e, text, file)])
+        return Source(file, None, [syntax_error(e, text, file)])
     except yaml.YAMLError as e:
         return Source(file, None, [TreeError(Location(file, 1, 1), f"YAML error: {e}")])
     finally:
@@ -150,25 +151,6 @@ def _control_character(text: str, file: str, pos: int) -> TreeError:
     line = text.count("\n", 0, pos) + 1
     column = pos - (text.rfind("\n", 0, pos) + 1) + 1
     return TreeError(Location(file, line, column), f"control character U+{ord(text[pos]):04X} is not allowed in YAML")
-
-
-def _syntax_error(e: yaml.MarkedYAMLError, text: str, file: str) -> TreeError:
-    mark = e.problem_mark or e.context_mark
-    if mark is None:
-        return TreeError(Location(file, 1, 1), f"YAML syntax error: {e.problem or e}")
-    lines = text.splitlines()
-    here = lines[mark.line][mark.column:mark.column + 1] if mark.line < len(lines) else ""
-    if here == "\t":
-        indent = not lines[mark.line][:mark.column].strip()
-        what = "for indentation" if indent else "here"
-        return TreeError(location(file, mark), f"tab characters are not allowed {what}; use spaces")
-    detail = e.problem or "invalid YAML"
-    if e.context:
-        detail = f"{detail} ({e.context}"
-        if e.context_mark is not None and e.context_mark is not mark:
-            detail += f" at line {e.context_mark.line + 1}, column {e.context_mark.column + 1}"
-        detail += ")"
-    return TreeError(location(file, mark), f"YAML syntax error: {detail}")
 
 
 def tag_problem(node: Node) -> str | None:
