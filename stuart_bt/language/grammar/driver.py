@@ -129,7 +129,7 @@ class _CommandReader:
         self.hold = False  # "before you Y, X": Y's intents wait ...
         self.held: list[TaskIntent] = []  # ... here until X's are in
         self.marks = bytearray(len(self.toks))  # per token: USED, TALK, or 0 (read by no clause)
-        self.tagged = question_tags(self.toks)  # sentences that end in a question tag: talk
+        self.tagged = question_tags(self.toks)  # sentences that end in a question tag: talk (None: no tag)
         self.retract_at: int | None = None  # "go to the kitchen, no.": a correction nothing replaced takes back
         self.conditional = False  # an "if" clause came before a command: the robot cannot check it
         self.after_subordinate = False  # the clause before was "when you get there": a stop after it is a step
@@ -137,8 +137,9 @@ class _CommandReader:
     def read(self) -> list[TaskIntent]:
         """The intents, in order; ``marks`` then says which tokens they came from."""
         n = self.s.n
+        tagged = self.tagged
         while self.i < n:
-            if self.tagged[self.i]:
+            if tagged is not None and tagged[self.i]:
                 self.marks[self.i] = TALK
                 self.i += 1
                 continue
@@ -265,8 +266,8 @@ class _CommandReader:
             self._no_clause(t, False)
             self._mark(start, self.i, TALK)
             return
-        if not subordinate and self._opens_sentence(start) and (
-                start in self.tokens.gerunds or (t, s.at(start + 1)) in TIME_OPENERS):
+        if not subordinate and (start in self.tokens.gerunds or (t, s.at(start + 1)) in TIME_OPENERS) and (
+                self._opens_sentence(start)):
             self.dead = True  # "walking to the kitchen takes ages": the ing-form is the subject of a statement
             self._no_clause(t, False)
             self._mark(start, self.i, TALK)
@@ -349,7 +350,7 @@ class _CommandReader:
     def _mark(self, start: int, end: int, how: int) -> None:
         end = min(end, len(self.marks))
         if end > start:
-            self.marks[start:end] = bytes((how,)) * (end - start)
+            self.marks[start:end] = _RUNS[how][:end - start]
 
     def _place(self, made: list[TaskIntent]) -> None:
         """Held back, replacing a corrected clause, before a reordered one, or at the end."""
@@ -401,21 +402,27 @@ TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "m
                    "noon", "midnight", "pm"})
 
 USED, TALK = 1, 2  # what a token was to the reader: words a command came from, words of conversation
+_RUNS = {USED: bytes((USED,)) * 256, TALK: bytes((TALK,)) * 256}  # MAX_TOKENS marks of each, sliced
 
 
 def _condition_at(toks: list[str], start: int, end: int) -> int:
     """Where a condition starts inside a clause's words ("stay there until ..."), else ``end``:
     the robot cannot wait for a condition, so its words are never counted as understood."""
+    if CONDITIONS.isdisjoint(toks[start + 1:end]):  # the common case, without a Python loop
+        return end
     for k in range(start + 1, end):  # not its first word: "if you could ..." is polite
         if toks[k] in CONDITIONS:
             return k
     return end
 
 
+_NOT_WHICH = TIMES | BODY_PARTS | {"your"}
+
+
 def _says_which(words: list[str]) -> bool:
     """A phrase after a target that says which thing or place is meant ("on the counter"), not
     when ("in an hour") or how ("with your teeth", "on one leg")."""
-    return not any(w in TIMES or w in BODY_PARTS or w == "your" for w in words)
+    return _NOT_WHICH.isdisjoint(words)
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

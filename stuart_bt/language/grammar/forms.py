@@ -10,14 +10,15 @@ from .lexicon import BOUNDARY, HARD_STOPS, REQUEST_TAGS, RETRACTIONS_BY_FIRST, T
 from .state import ParseState
 
 
-def question_tags(toks: list[str]) -> bytearray:
-    """Per token: 1 when its sentence ends with a question tag. A tag follows a comma and ends the
-    sentence: a tag word ("right", "correct", "yeah") or an auxiliary and a pronoun ("isn't it",
-    "wouldn't it", "didn't you"). A modal and "you" ("will you", "won't you") is a request when the
-    sentence opens with a command, so it is left to the clause reader."""
-    out = bytearray(len(toks))
+def question_tags(toks: list[str]) -> bytearray | None:
+    """Per token: 1 when its sentence ends with a question tag (None: no comma, so no tag). A
+    tag follows a comma and ends the sentence: a tag word ("right", "correct", "yeah") or an
+    auxiliary and a pronoun ("isn't it", "wouldn't it", "didn't you"). A modal and "you" ("will
+    you", "won't you") is a request when the sentence opens with a command, so it is left to the
+    clause reader."""
     if "," not in toks:  # every tag follows a comma: most commands have none
-        return out
+        return None
+    out = bytearray(len(toks))
     start = 0
     for end in range(len(toks) + 1):
         if end < len(toks) and toks[end] not in HARD_STOPS:

@@ -73,8 +73,7 @@ def not_a_target(words: list[str]) -> bool:
     """Words that cannot name a thing or a place, whatever they follow: a clause ("whatever Dave
     left"), a verb and its pronoun ("juggle it"), only filler ("mate", "buddy"), or a way of
     moving ("the bathroom backwards"). Leftover words never become targets."""
-    return (words[0] in WH or words[-1] in ("it", "them") or all(w in TRAILING for w in words)
-            or words[-1] in MANNER)
+    return words[0] in WH or words[-1] in ("it", "them") or words[-1] in MANNER or TRAILING.issuperset(words)
 
 
 MANNER = frozenset({"backwards", "backward", "forwards", "sideways", "slowly", "quickly", "carefully"})
