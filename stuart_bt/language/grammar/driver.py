@@ -32,7 +32,7 @@ The grammar reports targets as spoken (lower case, determiners removed): "the ch
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
 from ..numbers import word_value
@@ -96,8 +96,7 @@ class Grammar:
         return Reading(intents, tuple(reader.toks), bytes(reader.marks), tokens.unread())
 
 
-@dataclass(frozen=True)
-class Reading:
+class Reading(NamedTuple):
     """A command read: its intents, the tokens, what each token was to the reader (``USED``: an
     intent came from it; ``TALK``: part of a question or statement; 0: read by no clause) and the
     text past MAX_TOKENS that was not read at all. The marks are what coverage is made of."""
