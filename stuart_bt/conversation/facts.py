@@ -75,8 +75,8 @@ def lab_facts(knowledge: Mapping[str, Any]) -> list[Fact]:
         facts.append(Fact("sense sensor camera lidar eye see", f"I sense the world with {robot['senses']}."))
     for key in ("stations", "places"):
         for item in knowledge.get(key) or []:
-            name = _lower_first(str(item["name"]))
-            facts.append(Fact(name, f"The {name}: {_lower_first(str(item['about']))}"))
+            name = spoken_name(str(item["name"]))
+            facts.append(Fact(name, f"The {name}: {spoken_name(str(item['about']))}"))
     for person in knowledge.get("people") or []:
         facts.append(Fact(f"{person['name']} person", f"{person['name']} is the {person['role']}.", person=True))
     for other in knowledge.get("robots") or []:
@@ -85,8 +85,9 @@ def lab_facts(knowledge: Mapping[str, Any]) -> list[Fact]:
     return facts
 
 
-def _lower_first(text: str) -> str:
-    """ "A netted cage" -> "a netted cage"; "3D printers" and "LiDAR" stay as they are."""
+def spoken_name(text: str) -> str:
+    """A name or sentence as said inside a sentence: "A netted cage" -> "a netted cage", "Drone
+    cage" -> "drone cage"; "3D printers" and "LiDAR" stay as they are."""
     first = text.split(" ", 1)[0]
     return text[:1].lower() + text[1:] if first[1:] == first[1:].lower() else text
 
@@ -198,7 +199,7 @@ def _about_seeing(text: str, s: Situation) -> str | None:
         return None
     if not s.seen:
         return "I don't see anything I recognise right now."
-    return "I can see " + _listing([f"{'an' if label[:1] in 'aeiou' else 'a'} {label}" for label in s.seen]) + "."
+    return "I can see " + listing([with_article(label) for label in s.seen]) + "."
 
 
 def _where_is(thing: str, s: Situation) -> str | None:
@@ -215,9 +216,16 @@ def _where_is(thing: str, s: Situation) -> str | None:
     return None
 
 
-def _listing(items: Iterable[str]) -> str:
+def listing(items: Iterable[str]) -> str:
+    """ "a, b and c" (one item: itself)."""
     items = list(items)
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def with_article(label: str) -> str:
+    """ "a bottle", "an apple" (an underscore in a label is a space)."""
+    name = label.replace("_", " ")
+    return ("an " if name[:1].lower() in "aeiou" else "a ") + name
 
 
 def related_facts(index: FactIndex, question: str, k: int = 3) -> str:

@@ -19,6 +19,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..conversation.facts import listing, with_article
 from ..leaves import failure_code
 
 PARTS = {"loco": "legs", "pick": "arms", "gesture": "arms", "vision": "camera", "tts": "voice"}
@@ -130,7 +131,7 @@ def _in_the_way(names: Any) -> str:
 def _not_found(f: Failure, w: Words) -> str:
     if f.skill == "find":
         saw = [s for s in f.detail.get("saw") or [] if s != f.label]
-        seen = f" - I only see {_listed([_a(s) for s in saw])}" if saw else ""
+        seen = f" - I only see {listing([with_article(s) for s in saw])}" if saw else ""
         return f"I looked, but I can't see {w.thing(f.label)}{seen}"
     if f.skill in ("pick", "approach", "view"):
         return f"I can't find {w.thing(f.label)} where I thought it was"
@@ -194,15 +195,6 @@ def _fixed(text: str) -> Callable[[Failure, Words], str]:
 
 def _other(f: Failure, w: Words) -> str:
     return f"something went wrong while {_doing(f, w)}" if f.skill in FAMILY_OF else "something went wrong"
-
-
-def _listed(items: list[str]) -> str:
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
-
-
-def _a(label: str) -> str:
-    name = label.replace("_", " ")
-    return ("an " if name[:1].lower() in "aeiou" else "a ") + name
 
 
 SAYINGS: dict[str, Callable[[Failure, Words], str]] = {

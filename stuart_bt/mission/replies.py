@@ -14,7 +14,7 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
-from ..conversation.facts import FactAnswers, Situation, checked_reply
+from ..conversation.facts import FactAnswers, Situation, checked_reply, spoken_name
 from ..conversation.prompt import load_knowledge
 from ..conversation.reply import Reply
 from .queue import Look, Mission, Say
@@ -147,18 +147,18 @@ def situation_now(world: WorldState, current: Any, seen: list[str]) -> Situation
     places: dict[str, str] = {}
     for marker in world.markers.values():
         display = marker.label
-        places[display.lower()] = places[marker.name.replace("_", " ")] = display[:1].lower() + display[1:]
+        places[display.lower()] = places[marker.name.replace("_", " ")] = spoken_name(display)
     at = world.markers[world.last_marker].label if world.last_marker in world.markers else ""
     objects = {o.label: _where(o.x, o.y, world) for o in world.objects.values()}
     doing = ""
     if isinstance(current, Mission):
         doing = "busy with: " + ", then ".join(current.texts[current.done:] or current.texts)
-    return Situation(at=at[:1].lower() + at[1:], held=world.held or "", doing=doing, seen=seen, places=places,
+    return Situation(at=spoken_name(at), held=world.held or "", doing=doing, seen=seen, places=places,
                      objects=objects)
 
 
 def _where(x: float, y: float, world: WorldState) -> str:
     near = min(world.markers.values(), key=lambda m: (m.x - x) ** 2 + (m.y - y) ** 2, default=None)
     if near is not None and (near.x - x) ** 2 + (near.y - y) ** 2 <= NEAR_PLACE_M ** 2:
-        return f"near the {near.label[:1].lower() + near.label[1:]}"
+        return f"near the {spoken_name(near.label)}"
     return f"at x {x:.1f}, y {y:.1f} metres on my map"

@@ -27,6 +27,7 @@ from ..conversation.facts import FactAnswers, Situation, checked_reply
 from ..conversation.prompt import load_knowledge
 from .attention import Attention
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
+from .replies import situation_now
 
 if TYPE_CHECKING:
     from ..conversation.reply import Conversation
@@ -99,11 +100,9 @@ class TourTalk:
         self._answers.append(sentence)
 
     def _situation(self) -> Situation:
-        world = self.session.blackboard.world
-        at = world.markers[world.last_marker].label if world.last_marker in world.markers else ""
-        return Situation(at=at[:1].lower() + at[1:], held=world.held or "",
-                         doing=f"giving the tour ({self.session.spec.file})",
-                         places={m.label.lower(): m.label.lower() for m in world.markers.values()})
+        situation = situation_now(self.session.blackboard.world, None, [])
+        situation.doing = f"giving the tour ({self.session.spec.file})"
+        return situation
 
     # -- duties (tick thread, before every tick and while held) ----------------------------------------
     def _duties(self) -> None:
