@@ -13,24 +13,26 @@ export CMAKE_ARGS ?= -DGGML_NATIVE=OFF
 $(BIN)/python:
 	scripts/venv.sh $(PYTHON) $(VENV)
 
-# Re-install whenever the package metadata changes; one stamp per set of extras.
-$(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
+# Re-install whenever the package metadata or a compiled module changes (setup.py compiles the
+# grammar with mypyc: stuart_bt/language/compiled.py); one stamp per set of extras.
+COMPILED := $(wildcard stuart_bt/language/*.py stuart_bt/language/grammar/*.py)
+$(VENV)/.stamp-base: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e .
 	touch $@
 
-$(VENV)/.stamp-sim: pyproject.toml setup.py | $(BIN)/python
+$(VENV)/.stamp-sim: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e ".[sim,ik]"
 	touch $@
 
-$(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
+$(VENV)/.stamp-test: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision,hearing]"
 	touch $@
 
-$(VENV)/.stamp-lint: pyproject.toml setup.py | $(BIN)/python
+$(VENV)/.stamp-lint: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e ".[lint]"
 	touch $@
 
-$(VENV)/.stamp-bench: pyproject.toml setup.py | $(BIN)/python
+$(VENV)/.stamp-bench: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e ".[test,bench,sim,ik,llm,ros,robot,web,vision,hearing]"
 	touch $@
 

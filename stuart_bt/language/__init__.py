@@ -14,11 +14,15 @@ Pipeline (docs/voice.md)::
 - :mod:`.cli`: ``stuart-bt parse``.
 """
 
-from .grammar import Defaults, Grammar, parse_command
-from .intents import ACTIONS, TaskIntent, confirmation
-from .parse import Parser, ParseResult, parse
-from .resolve import Resolution, Resolver
-from .wake import WakeFilter, WakeMatch
+from .compiled import use_source_when_stale
+
+use_source_when_stale()  # before the first grammar module is imported
+
+from .grammar import Defaults, Grammar, parse_command  # noqa: E402
+from .intents import ACTIONS, TaskIntent, confirmation  # noqa: E402
+from .parse import Parser, ParseResult, parse  # noqa: E402
+from .resolve import Resolution, Resolver  # noqa: E402
+from .wake import WakeFilter, WakeMatch  # noqa: E402
 
 __all__ = [
     "ACTIONS", "Defaults", "Grammar", "ParseResult", "Parser", "Resolution", "Resolver", "TaskIntent",
