@@ -36,6 +36,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from stuart_bt.language import compiled
+from stuart_bt.language.grammar import driver
 from stuart_bt.language.intents import TaskIntent
 from stuart_bt.language.parse import Parser
 
@@ -196,7 +198,8 @@ def run(quick: bool = False) -> list[Result]:
         return got.wake, got.intents
 
     acc, naive_acc = accuracy(rows, grammar_result), accuracy(rows, naive_parse)
-    where = f"{len(utterances)} utterances of tests/data/utterances"
+    how = "compiled grammar (mypyc)" if compiled.compiled(driver) else "grammar run from Python source"
+    where = f"{len(utterances)} utterances of tests/data/utterances, {how}"
     return [
         Result(f"{NAME}.grammar.p50", g50, "us/utterance", Anchor(NAIVE, n50),
                note=f"median over {where}; per utterance the median of {rounds} rounds of {batch} calls"),
