@@ -45,9 +45,9 @@ demo: system-deps $(VENV)/.stamp-sim
 		--report out/lab_tour_report.json --log out/lab_tour.jsonl \
 		--record out/lab_tour.mp4 --map-out out/lab_tour_map.png
 
-## test: the whole pytest suite
+## test: the whole pytest suite, in one worker process per core (pytest-xdist; docs/testing.md)
 test: system-deps $(VENV)/.stamp-test
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n 2
 
 ## lint: the ruff rule set and the type check (both configured in pyproject.toml); CI runs it first
 lint: system-deps $(VENV)/.stamp-test $(VENV)/.stamp-lint
