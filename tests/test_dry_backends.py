@@ -52,7 +52,8 @@ def test_a_straight_walk_lasts_its_length_at_half_a_metre_per_second_of_clock_ti
     walk = run(loco, "navigate", pose={"x": 2.0, "y": 0.0, "yaw": None})
     wall = time.monotonic() - started
     assert walk.accepted_data == {"duration": 4.0}
-    assert 4.0 / factor <= wall < 4.0 / factor + 0.25
+    # at least its clock length; far less than 4 s of wall time (a factor ignored), however busy the machine
+    assert 4.0 / factor <= wall < 4.0 / factor + 1.0
 
 
 def test_walking_to_the_left_turns_to_face_walks_and_keeps_the_heading_of_travel(daemon):
