@@ -151,6 +151,44 @@ def test_a_signal_during_a_mission_stops_the_tree_and_the_daemons_and_leaves_no_
     assert bridge.out.wait_for(lambda x: x == "ros bridge: stopped; every daemon stopped", 10) is not None
 
 
+def test_a_tree_behind_the_bridge_answers_a_question_holds_on_stop_and_finishes_after_continue(tmp_path):
+    log = tmp_path / "tour.jsonl"
+
+    def event(kind: str, reason: str = ""):
+        return lambda m: m.get("topic") == "/bt/events" and json.loads(m["data"])["kind"] == kind \
+            and json.loads(m["data"]).get("reason", "").startswith(reason)
+
+    tour = str(Path(__file__).resolve().parents[1] / "trees" / "lab_tour.yaml")
+    with BridgeProcess(tour, "--backend", "dry", "--speed", "20", "--log", str(log)) as bridge, RosClient() as client:
+        line = bridge.up()
+        client.publish("audio_msg", "Hey Stuart, what happens in the drone cage?")
+        answer = client.wait_for(lambda m: m.get("topic") == "/llm/response" and "netted cage" in m["data"])
+        went_on = client.wait_for(event("resume"))
+        client.publish("audio_msg", "Hey Stuart, stop")
+        held = client.wait_for(event("hold", "stop said"))
+        client.publish("llm/input", "continue")  # woken upstream: no wake phrase needed
+        code = bridge.proc.wait(60)
+        sent_intents = intents(client)
+    events = [json.loads(x) for x in log.read_text(encoding="utf-8").splitlines()]
+
+    assert line.startswith("ros bridge: node /stuart_bridge") and answer is not None and went_on is not None
+    assert held is not None
+    assert code == 0 and bridge.out.wait_for(lambda x: x == "ros bridge: the tree ended SUCCESS; every daemon stopped",
+                                             10) is not None
+    [reply] = [e for e in events if e["kind"] == "reply"]
+    assert reply["source"] == "facts" and reply["text"] == answer["data"]
+    assert [(e["data_kind"], e["source"]) for e in events if e["kind"] == "utterance"] == [
+        ("conversation", "ros:audio_msg"), ("stop", "ros:audio_msg"), ("continue", "ros:llm/input")]
+    assert [i["action"] for i in sent_intents] == ["stop"]  # the stop said, as the grammar read it
+    holds = [e for e in events if e["kind"] == "hold"]
+    resumes = [e["t"] for e in events if e["kind"] == "resume"]
+    assert [h["reason"] for h in holds] == ["answering a question", "stop said: stop"] and len(resumes) == 2
+    sent_while_held = [e["cmd"] for e in events if e["kind"] == "command" and holds[1]["t"] <= e["t"] < resumes[1]]
+    assert set(sent_while_held) <= {"stop", "cancel"} and "stop" in sent_while_held  # nothing that moves
+    [end] = [e for e in events if e["kind"] == "run" and e["phase"] == "end"]
+    assert end["status"] == "SUCCESS" and end["t"] > resumes[1]
+
+
 # In the dry and sim labs every object is remembered from the start, so a mission's find never asks
 # the vision daemon and no ``memory`` event comes from a short mission. This bridge process wraps a
 # stand-in robot (a real event stream, nothing else) and publishes perception's own summary, made

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 
 from stuart_bt.core.events import Event
+from stuart_bt.mission.commands import MAX_UTTERANCE, clean_utterance
 from stuart_bt.mission.executor import MissionExecutor, MissionOptions
 from stuart_bt.ros import topics as t
 
@@ -59,8 +60,8 @@ def test_a_memory_event_from_perception_gives_its_summary_and_markers_of_the_wel
 
 
 def test_input_text_that_is_not_speech_is_refused_and_control_characters_are_blanked():
-    assert t.clean_text("  Hey Stuart,\tgo to the kitchen \n") == "Hey Stuart, go to the kitchen"
-    assert [t.clean_text(x) for x in ("", "   ", "\x00\x01", "a" * (t.MAX_TEXT + 1))] == [None] * 4
+    assert clean_utterance("  Hey Stuart,\tgo to the kitchen \n") == "Hey Stuart, go to the kitchen"
+    assert [clean_utterance(x) for x in ("", "   ", "\x00\x01", "a" * (MAX_UTTERANCE + 1), 7)] == [None] * 5
 
 
 def test_woken_input_needs_no_wake_phrase_and_a_daemon_request_goes_to_the_running_tree():

@@ -1,7 +1,7 @@
 """``WS /ws/audio`` (push-to-talk) driven by a Python client against a real ``stuart-bt serve
 --mission``: spoken audio (espeak-ng, made here) becomes a mission; the limits (a press too long,
 bad frames and messages, a second start, a wrong Origin or Host) are answered with one sentence
-and never a traceback."""
+and never a traceback. Against ``stuart-bt serve TREE``, what is spoken goes to the running tree."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from web_support import Served
+from web_support import EventFeed, Served
 
 pytest.importorskip("starlette", reason="the web view needs the web extra (make test installs it)")
 websockets = pytest.importorskip("websockets")
@@ -132,8 +132,23 @@ async def talk_text(url: str, text: str) -> dict[str, Any]:
         return json.loads(await asyncio.wait_for(ws.recv(), 30))
 
 
-def test_a_tree_server_says_push_to_talk_needs_a_mission_server():
+def test_a_tree_server_with_nothing_running_says_so_when_the_button_is_released():
     with Served("trees/greet.yaml", "--paused") as served:
-        answers = asyncio.run(talk(ws_url(served), [{"type": "start", "rate": 16000}, b"\x00\x00"], 2))
-    assert answers[0] == {"type": "error", "error": "push-to-talk needs a mission server: stuart-bt serve --mission"}
-    assert "without a start" in answers[1]["error"]
+        answers = asyncio.run(talk(ws_url(served), [{"type": "start", "rate": 16000}, b"\x00\x00",
+                                                    {"type": "stop"}], 2))
+    assert answers[0] == {"type": "recording", "rate": 16000, "max_s": 15.0}
+    assert answers[1]["type"] == "error" and answers[1]["error"].startswith("nothing is running to talk to")
+
+
+def test_stop_spoken_into_the_button_holds_the_tree_a_tree_server_runs(tmp_path):
+    pcm = pcm_48k(tmp_path, "Hey Stuart, stop")
+    with Served("trees/lab_tour.yaml", "--backend", "dry", "--speed", "5") as served, EventFeed(served) as feed:
+        feed.wait_for(lambda e: e["kind"] == "run" and e.get("phase") == "start")
+        answers = asyncio.run(talk(ws_url(served), [{"type": "start", "rate": 48000}, *frames(pcm), {"type": "stop"}],
+                                   2))
+        hold = feed.wait_for(lambda e: e["kind"] == "hold", timeout=120)
+        [said] = feed.of("utterance")
+    heard = answers[1]
+    assert heard["type"] == "heard" and heard["kind"] == "stop" and heard["source"] == "browser", answers
+    assert "stop" in heard["text"].lower() and said["source"] == "browser" and said["data_kind"] == "stop"
+    assert hold["reason"].startswith("stop said")

@@ -84,3 +84,29 @@ def test_the_node_details_clear_when_a_new_mission_brings_a_new_tree(page):
         assert path not in page.text_content("#node-details")
         assert page.text_content("#node-details").startswith("Click a node")
         assert page.locator(".node.selected").count() == 0
+
+
+def test_serving_a_tree_the_console_talks_to_it_and_shows_the_answer_the_hold_and_the_going_on(page):
+    with Served("trees/lab_tour.yaml", "--backend", "dry", "--speed", "40", "--paused") as served:
+        page.goto(served.url + "#console")
+        page.wait_for_selector("#conn.ok")
+        assert "drone cage" in page.get_attribute("#say-input", "placeholder")
+        page.click("#btn-run")
+        page.wait_for_function("document.getElementById('run-state').textContent === 'busy: run'", timeout=WAIT)
+        say(page, "Hey Stuart, stop")
+        log = page.locator("#console-log")
+        log.locator("li.hold").first.wait_for(timeout=WAIT)
+        assert "the tree is held: stop said: stop" in log.locator("li.hold").first.text_content()
+        page.wait_for_function("document.getElementById('run-state').textContent === 'held: stop said: stop'",
+                               timeout=WAIT)
+        page.wait_for_function("document.getElementById('btn-continue').disabled === false", timeout=WAIT)
+
+        say(page, "Hey Stuart, what happens in the drone cage?")  # answered while held; it stays held
+        log.locator("li.reply").first.wait_for(timeout=WAIT)
+        reply = log.locator("li.reply").first.text_content()
+        assert "netted cage" in reply and "(from facts)" in reply
+        log.locator("li.says", has_text="netted cage").first.wait_for(timeout=WAIT)
+        page.click("#btn-continue")
+        log.locator("li.resume").first.wait_for(timeout=WAIT)
+        log.locator("li.run", has_text="run ended: SUCCESS").wait_for(timeout=WAIT)
+        assert [k.text_content() for k in log.locator("li.heard .kind").all()] == ["heard"] * 3

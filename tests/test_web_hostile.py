@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from web_support import REPO, Served
+from web_support import REPO, EventFeed, Served
 
 pytestmark = pytest.mark.slow
 LAB_MARKERS = Path(str(files("stuart_bt.sim").joinpath("maps/lab_markers.json")))
@@ -80,6 +80,25 @@ def test_a_name_with_a_trailing_newline_is_refused_and_nothing_is_written(served
     assert 400 <= status < 500
     assert served.markers.read_text() == before
     assert not any(served.gestures.glob("*\n*")) if served.gestures.exists() else True
+
+
+@pytest.mark.parametrize("body, status, says", [
+    (b'{"text": ""}', 400, "type something to say"),
+    (b'{"text": " \\u0000\\u0007\\t "}', 400, "type something to say"),  # control characters only
+    (b'{"text": 5}', 400, "type something to say"),
+    (json.dumps({"text": "Hey Stuart, " + "la " * 700}).encode(), 400, "at most 2000 characters"),
+    (b'{"text": "Hey Stuart, caf\xe9"}', 400, "not JSON"),  # Latin-1, not UTF-8
+    (b'{"text": "Hey Stuart, stop"', 400, "not JSON"),
+    (b'["Hey Stuart, stop"]', 400, "a JSON object"),
+    (b'{"text": "Hey Stuart, stop"}', 409, "nothing is running"),  # the tree waits for Run
+], ids=["empty", "control characters", "not a string", "too long", "not UTF-8", "cut JSON", "an array",
+        "nothing running"])
+def test_an_odd_utterance_to_a_tree_server_is_one_clear_4xx_and_nothing_is_said(served, body, status, says):
+    answer, text = request(served, "POST", "/api/say", body)
+    with EventFeed(served) as feed:  # its hello holds every event so far
+        heard = feed.of("utterance")
+    assert answer == status and says in json.loads(text)["error"] and "Traceback" not in text
+    assert heard == []
 
 
 JSON = st.recursive(st.none() | st.booleans() | st.floats(allow_nan=False) | st.integers() | st.text(max_size=12),

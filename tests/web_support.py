@@ -1,4 +1,5 @@
-"""What the browser tests share: a ``stuart-bt serve`` process on loopback and a real Chromium.
+"""What the web tests share: a ``stuart-bt serve`` process on loopback, a real Chromium, and for
+tests without a browser one HTTP call (:func:`call`) and the event socket (:class:`EventFeed`).
 
 The server is the real CLI in its own process (as a user starts it), on a free port; the
 browser is Debian's Chromium driven by Playwright (never a browser download), headless, in a
@@ -8,6 +9,9 @@ fresh profile. ``STUART_BT_SCREENSHOTS=DIR`` makes the tests save a picture of e
 
 from __future__ import annotations
 
+import contextlib
+import http.client
+import json
 import os
 import re
 import signal
@@ -15,8 +19,9 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -81,6 +86,87 @@ class Served:
         return code
 
     def __enter__(self) -> Served:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def call(served: Served, method: str, path: str, body: Any = None, raw: bytes | None = None) -> tuple[int, Any]:
+    """One request to the server as a script would send it: ``body`` as JSON (or ``raw`` bytes);
+    the status and the answer (JSON, or the text when it is none)."""
+    conn = http.client.HTTPConnection("127.0.0.1", served.port, timeout=60)
+    try:
+        data = raw if raw is not None else None if body is None else json.dumps(body).encode()
+        conn.request(method, path, body=data, headers={"Content-Type": "application/json"})
+        response = conn.getresponse()
+        text = response.read().decode("utf-8", "replace")
+    finally:
+        conn.close()
+    try:
+        return response.status, json.loads(text)
+    except ValueError:
+        return response.status, text
+
+
+class EventFeed:
+    """The server's event socket (``/ws``), read on a thread as a browser would: the ``hello``
+    history, then every batch, kept in order. Close it (or use ``with``) to end the thread."""
+
+    def __init__(self, served: Served) -> None:
+        from websockets.sync.client import connect
+
+        self.events: list[dict[str, Any]] = []
+        self._cond = threading.Condition()
+        self._stack = contextlib.ExitStack()  # the socket is used as its context manager (closed in close())
+        self._socket = self._stack.enter_context(connect(served.url.replace("http://", "ws://").rstrip("/") + "/ws",
+                                                         open_timeout=30, max_size=None))
+        self._greeted = threading.Event()
+        self._thread = threading.Thread(target=self._read, name="event-feed", daemon=True)
+        self._thread.start()
+        if not self._greeted.wait(30):  # from here on ``events`` holds at least the server's history
+            self.close()
+            raise AssertionError("the event socket sent no hello in 30 s")
+
+    def _read(self) -> None:
+        from websockets.exceptions import ConnectionClosed
+
+        try:
+            while True:
+                message = json.loads(self._socket.recv())
+                batch = message.get("events", []) if message.get("type") in ("hello", "events") else []
+                with self._cond:
+                    self.events.extend(batch)
+                    self._cond.notify_all()
+                self._greeted.set()
+        except ConnectionClosed:
+            pass
+
+    def wait_for(self, pred: Callable[[dict[str, Any]], bool], timeout: float = 60.0,
+                 since: int = 0) -> dict[str, Any]:
+        """The first event (from index ``since`` on) that ``pred`` accepts, waiting for it; an
+        AssertionError naming the last few events when none came in ``timeout`` wall seconds."""
+        deadline = time.monotonic() + timeout
+        with self._cond:
+            while True:
+                for event in self.events[since:]:
+                    if pred(event):
+                        return event
+                since = len(self.events)
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise AssertionError(f"no such event in {timeout:g} s; the last ones: {self.events[-8:]}")
+                self._cond.wait(remaining)
+
+    def of(self, kind: str) -> list[dict[str, Any]]:
+        with self._cond:
+            return [e for e in self.events if e["kind"] == kind]
+
+    def close(self) -> None:
+        self._stack.close()
+        self._thread.join(timeout=10)
+
+    def __enter__(self) -> EventFeed:
         return self
 
     def __exit__(self, *exc: object) -> None:

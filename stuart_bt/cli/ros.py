@@ -1,9 +1,12 @@
-"""``stuart-bt ros``: the mission pipeline behind the original system's ROS 2 topics.
+"""``stuart-bt ros``: the mission pipeline (or one tree) behind the original system's ROS 2 topics.
 
 Starts one :class:`~stuart_bt.mission.executor.MissionExecutor` (daemons, and the MuJoCo world on
 the sim backend) and one bridge node, then waits for SIGINT or SIGTERM; either shuts the tree,
-the daemons and the node down, and the command exits 0. A start that fails (bad namespace or
-domain id, a daemon that does not come up) prints one line and exits 1. docs/ros.md has the topics.
+the daemons and the node down, and the command exits 0. With a TREE file it runs that tree instead,
+as ``stuart-bt run`` does, and what arrives on the input topics is said to the running tree
+(:class:`~stuart_bt.mission.talking_tree.TalkingTree`): the command ends with the tree (exit 0 when
+it succeeded or a signal stopped it, else 1). A start that fails (bad namespace or domain id, a tree
+with errors, a daemon that does not come up) prints one line and exits 1. docs/ros.md has the topics.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ import re
 import signal
 import sys
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,6 +28,7 @@ from .speed import add_speed_argument, speed_for
 
 if TYPE_CHECKING:
     from ..mission.executor import MissionOptions
+    from ..mission.talking_tree import TalkingTree
 
 EXIT_OK, EXIT_FAILED = 0, 1
 MAX_DOMAIN_ID = 232  # the highest ROS 2 domain id whose DDS ports fit (ROS 2 docs, "domain ID")
@@ -33,8 +38,12 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``stuart-bt ros`` on an argparse sub-parser set."""
     p = subparsers.add_parser(
         "ros", help="a ROS 2 bridge node: /audio_msg in, /llm/task_intent, /llm/response, /bt/status out",
-        description="Run the mission pipeline behind the original system's ROS 2 topics (docs/ros.md). "
-                    "ROS_DOMAIN_ID is respected; Ctrl-C or SIGTERM stops node, tree and daemons.")
+        description="Run the mission pipeline (or one TREE) behind the original system's ROS 2 topics "
+                    "(docs/ros.md). ROS_DOMAIN_ID is respected; Ctrl-C or SIGTERM stops node, tree and daemons.")
+    p.add_argument("tree", nargs="?", metavar="TREE",
+                   help="run this tree instead of missions: what arrives on the input topics is said to it (a "
+                        "question is answered at the next pause in speech, 'stop' holds it, 'continue' goes on); "
+                        "the bridge ends with the tree")
     p.add_argument("--backend", choices=("dry", "sim", "unitree"), default="dry", help="skill backend (default dry)")
     p.add_argument("--namespace", default="/", metavar="NS", help="namespace of the node and its topics (default /)")
     p.add_argument("--start", metavar="MARKER", help="where the robot starts (default entrance)")
@@ -66,6 +75,8 @@ def cmd_ros(args: argparse.Namespace) -> int:
     ears_options = daemon_options.pop("ears", {})
     if args.confirm_picks:
         daemon_options.setdefault("pick", {})["confirm"] = True
+    if args.tree:
+        return _bridge_tree(args, daemon_options, ears_options)
     options = mission_options(args, daemon_options)
     stop = threading.Event()
     previous = _handlers(stop)
@@ -96,6 +107,59 @@ def cmd_ros(args: argparse.Namespace) -> int:
             signal.signal(signum, handler)
     print("ros bridge: stopped; every daemon stopped", flush=True)
     return EXIT_OK
+
+
+def _bridge_tree(args: argparse.Namespace, daemon_options: dict[str, Any], ears_options: dict[str, Any]) -> int:
+    """``stuart-bt ros TREE``: the node is made before the session starts, so its snapshot and
+    ``/bt/events`` see the tree being built; the tree runs on this thread and a signal stops it."""
+    from ..ros.node import Bridge
+
+    try:
+        robot = talking_tree(args, daemon_options)
+    except (ValueError, RuntimeError) as e:  # a missing model file
+        print(f"stuart-bt: {e}", file=sys.stderr)
+        return EXIT_FAILED
+    stop = threading.Event()
+    previous = _handlers(stop, also=lambda: robot.request_stop("interrupted"))
+    listener = None
+    try:
+        bridge = Bridge(robot, namespace=_namespace(args.namespace), status_rate=args.status_rate)
+        try:
+            robot.start()
+            bridge.start()
+            listener = make_listener(args.hear, robot, args, ears_options)
+            if listener is not None:
+                listener.start()
+            _announce(bridge, robot)
+            if stop.is_set():  # a signal while the daemons came up: the run ends before its first tick
+                robot.request_stop("interrupted")
+            outcome = robot.run()
+            robot.close()  # every daemon stops while the node still reports it
+        finally:
+            if listener is not None:
+                listener.close()
+            bridge.close()
+    finally:
+        robot.close()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+    print(f"ros bridge: the tree ended {outcome.status}{f' ({outcome.reason})' if outcome.reason else ''}; "
+          "every daemon stopped", flush=True)
+    return EXIT_OK if outcome.status in ("SUCCESS", "STOPPED") else EXIT_FAILED
+
+
+def talking_tree(args: argparse.Namespace, daemon_options: dict[str, Any]) -> TalkingTree:
+    """The tree behind the bridge, from the command's options (a tree with errors: one line)."""
+    from ..conversation import make_conversation
+    from ..mission.talking_tree import TalkingTree
+    from ..run.session import RunOptions
+    from .main import _load
+
+    spec = _load(args.tree, None)
+    options = RunOptions(backend=args.backend, speed=speed_for(args.backend, args.speed, interactive=True),
+                         start=args.start, log=args.log, daemon_options=daemon_options)
+    conversation = make_conversation(args.llm, **llm_options(args)) if args.llm != "none" else None
+    return TalkingTree(spec, options, conversation)
 
 
 def mission_options(args: argparse.Namespace, daemon_options: dict[str, Any]) -> MissionOptions:
@@ -149,16 +213,19 @@ def _announce(bridge: Any, robot: Any) -> None:
     daemons = ", ".join(f"{f} {supervisor.pid(f)}" for f in supervisor.families) if supervisor else "none"
     ins = " ".join(bridge.resolve(k) for k in (t.AUDIO_IN, t.LLM_INPUT, t.MISSION_IN, t.PICK_TARGET))
     print(f"ros bridge: node {bridge.full_name} domain {bridge.context.get_domain_id()} backend "
-          f"{robot.options.backend}; daemons {daemons}; listening on {ins}", flush=True)
+          f"{robot.session.options.backend}; daemons {daemons}; listening on {ins}", flush=True)
 
 
-def _handlers(stop: threading.Event) -> dict[int, Any]:
-    """SIGINT and SIGTERM only set ``stop``: the main thread then shuts down in order. SIGINT is
-    set explicitly because a bridge started in the background inherits it ignored."""
+def _handlers(stop: threading.Event, also: Callable[[], None] | None = None) -> dict[int, Any]:
+    """SIGINT and SIGTERM only set ``stop`` (and call ``also``, which must be signal-safe, such as
+    asking a running tree to stop): the main thread then shuts down in order. SIGINT is set
+    explicitly because a bridge started in the background inherits it ignored."""
     if threading.current_thread() is not threading.main_thread():
         return {}
 
     def handler(signum: int, frame: Any) -> None:
         stop.set()
+        if also is not None:
+            also()
 
     return {s: signal.signal(s, handler) for s in (signal.SIGINT, signal.SIGTERM)}

@@ -42,7 +42,7 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--start", metavar="MARKER", help="marker the robot starts at (default entrance)")
     p.add_argument("--log", metavar="OUT.jsonl", help="write every event as JSON lines (replay it with --replay)")
     p.add_argument("--paused", action="store_true", help="wait for the Run button instead of starting the tree")
-    p.add_argument("--no-wake", action="store_true", help="mission: no 'Hey Stuart' needed in the console")
+    p.add_argument("--no-wake", action="store_true", help="no 'Hey Stuart' needed in the console")
     p.set_defaults(func=cmd_serve)
     return p
 
@@ -139,7 +139,7 @@ def _robot(args: argparse.Namespace) -> tuple[Any, Any, Path | None, str]:
     spec = _load(args.file, args.markers)
     options = RunOptions(backend=args.backend, rate=args.rate, speed=speed, start=args.start,
                          log=Path(args.log) if args.log else None)
-    control = TreeControl(spec, options, autostart=not args.paused)
+    control = TreeControl(spec, options, autostart=not args.paused, require_wake=not args.no_wake)
     info = {"mode": "tree", "backend": args.backend, "file": args.file}
     markers = Path(spec.markers_file) if spec.markers_file else _package_markers()
     return control, EventHub(control.events, info=info), markers, f"{args.file} ({args.backend})"

@@ -89,6 +89,18 @@ def _strip_instead(text: str) -> tuple[str, bool]:
     return text, False
 
 
+MAX_UTTERANCE = 2000  # characters: longer input is not speech, it is a mistake (ROS topics, the web console)
+
+
+def clean_utterance(text: object) -> str | None:
+    """Input text as the robot should see it (control characters made spaces, trimmed), or None
+    when it is not speech at all (not a string, empty, only control characters, or far too long)."""
+    if not isinstance(text, str) or len(text) > MAX_UTTERANCE:
+        return None
+    text = "".join(c if c.isprintable() else " " for c in text).strip()
+    return text or None
+
+
 MIN_CONFIDENCE = 0.35  # a recogniser's confidence below this (exp(-1.05)) is a guess, not a hearing
 
 

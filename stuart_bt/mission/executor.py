@@ -222,17 +222,7 @@ class MissionExecutor:
             executor = self.jobs.executor
             if executor is None or self.session.supervisor is None:
                 return False
-            supervisor = self.session.supervisor
-            if family not in supervisor.families:
-                raise ValueError(f"no {family!r} daemon; the daemons are {', '.join(supervisor.families)}")
-            sent: list[bool] = []
-
-            def send() -> None:  # once; it stays in the list (removing it mid-iteration skips a hook)
-                if not sent:
-                    sent.append(True)
-                    supervisor.client(family).request(cmd, args or {})
-
-            executor.pre_tick.append(send)
+            self.session.request_before_tick(executor, family, cmd, args)
             return True
 
     def _accept(self, utterance: str, intents: list[TaskIntent], replace: bool) -> Mission | str:

@@ -61,6 +61,12 @@ class TourTalk:
     def close(self) -> None:
         self._thinking.shutdown(wait=False, cancel_futures=True)
 
+    @property
+    def stopped_by_user(self) -> bool:
+        """"Stop" was said and no "continue" since: the tree waits for a person, not for an answer."""
+        with self._lock:
+            return self._stopped_by_user
+
     # -- input (any thread) ---------------------------------------------------------------------------
     def submit(self, utterance: str, woken: bool = False, *, source: str = "typed",
                heard: Mapping[str, Any] | None = None) -> Command:
@@ -68,7 +74,8 @@ class TourTalk:
         command = interpret(self.parser, utterance, woken or held)
         self.attention.after(command)
         self.events.publish("utterance", text=utterance, kind=command.kind, source=source,
-                            intents=[i.to_dict() for i in command.intents], **(heard or {}))
+                            intents=[i.to_dict() for i in command.intents],
+                            parsed=[i.to_dict() for i in command.parse.intents], **(heard or {}))
         if command.kind == STOP:
             with self._lock:
                 self._stopped_by_user = self._hush = True

@@ -33,6 +33,7 @@ from rclpy.signals import SignalHandlerOptions  # noqa: E402
 from std_msgs.msg import String  # noqa: E402
 
 from ..core.events import Event  # noqa: E402
+from ..mission.commands import clean_utterance  # noqa: E402
 from ..run.snapshot import TreeSnapshot  # noqa: E402
 from . import topics as t  # noqa: E402
 
@@ -166,7 +167,7 @@ class Bridge:
             publisher.publish(self._markers(out.payload))
         else:
             if out.topic == t.AUDIO_IN:  # heard here: our own subscription will get it back
-                self._own_speech.append((t.clean_text(out.payload) or "", time.monotonic()))
+                self._own_speech.append((clean_utterance(out.payload) or "", time.monotonic()))
             publisher.publish(String(data=out.payload))
 
     def _is_own_speech(self, text: str) -> bool:
@@ -223,7 +224,7 @@ class Bridge:
         return callback
 
     def _text(self, topic: str, msg: Any) -> str | None:
-        text = t.clean_text(getattr(msg, "data", None))
+        text = clean_utterance(getattr(msg, "data", None))
         if text is None:
             self.ignored += 1
             raw = getattr(msg, "data", "")

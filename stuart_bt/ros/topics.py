@@ -29,7 +29,6 @@ MEMORY_MARKERS = "spatial_memory/markers"
 
 MAP_FRAME = "map"
 CONFIRM_WORDS = frozenset({"confirm", "confirmed", "yes", "go ahead"})
-MAX_TEXT = 2000  # characters: longer input is not speech, it is a mistake
 
 
 @dataclass(frozen=True)
@@ -95,12 +94,3 @@ def memory_objects(data: dict[str, Any]) -> list[dict[str, Any]]:
             good.append({**obj, "id": str(obj.get("id") or obj["label"]), "label": str(obj["label"]),
                          "z": float(obj.get("z") or 0.0)})
     return good
-
-
-def clean_text(text: object) -> str | None:
-    """Input text as the mission executor should see it, or None when it is not speech at all
-    (empty, only control characters, or far too long)."""
-    if not isinstance(text, str) or len(text) > MAX_TEXT:
-        return None
-    text = "".join(c if c.isprintable() else " " for c in text).strip()
-    return text or None

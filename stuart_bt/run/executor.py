@@ -104,6 +104,11 @@ class Executor:
         return self._hold.is_set()
 
     @property
+    def hold_reason(self) -> str | None:
+        """Why the tree is held (what the web view shows), or None when it is not."""
+        return self._hold_reason if self._hold.is_set() else None
+
+    @property
     def paused(self) -> bool:
         """The tree is paused: its running leaves and the motion were stopped (tick thread)."""
         return self._holding

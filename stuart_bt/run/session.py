@@ -197,6 +197,24 @@ class Session:
         if self.executor is not None:
             self.executor.request_stop(reason)
 
+    def request_before_tick(self, executor: Executor, family: str, cmd: str,
+                            args: dict[str, Any] | None = None) -> None:
+        """Send one command to a skill daemon before ``executor``'s next tick (held or not): the
+        supervisor belongs to the tick thread, so another thread (a ROS callback, the web view) asks
+        it this way, e.g. ``("pick", "confirm")`` for the pick confirmation gate."""
+        supervisor = self.supervisor
+        if supervisor is None or family not in supervisor.families:
+            have = ", ".join(supervisor.families) if supervisor is not None else "none"
+            raise ValueError(f"no {family!r} daemon; the daemons are {have}")
+        sent: list[bool] = []
+
+        def send() -> None:  # once; it stays in the list (removing it mid-iteration skips a hook)
+            if not sent:
+                sent.append(True)
+                supervisor.client(family).request(cmd, args or {})
+
+        executor.pre_tick.append(send)
+
     def hurry(self) -> None:
         """Shorten the waits of stopping and shutting down (a second Ctrl-C); daemons still get
         stop and are still reaped."""

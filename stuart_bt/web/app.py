@@ -9,7 +9,7 @@ Routes (every answer is JSON; a refused request gets ``{"error": "one sentence"}
 | ``WS /ws`` | ``hello`` (info, snapshot, history), then ``events`` batches |
 | ``GET /api/state`` | busy, running, can_continue |
 | ``POST /api/run``, ``/api/stop``, ``/api/continue`` | the served tree (or the mission's stop / continue) |
-| ``POST /api/say`` ``{text}`` | an utterance to the mission executor |
+| ``POST /api/say`` ``{text}`` | an utterance (at most 2000 characters) to the mission executor or the running tree |
 | ``WS /ws/audio`` | push-to-talk: PCM frames of one press in, what was heard out (audio.py) |
 | ``POST /api/walk`` ``{x, y, yaw}``, ``/api/goto`` ``{marker}`` | walk to a map pose / a marker |
 | ``GET /api/map``, ``/api/map.png`` | map numbers and picture |
@@ -40,6 +40,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from ..core.jsonfile import is_finite_number, nesting_depth
 from ..maps.markers import load_markers
+from ..mission.commands import MAX_UTTERANCE, clean_utterance
 from .audio import audio_socket
 from .control import ControlError
 from .gestures import GestureDeskError, GestureFolder, joint_table
@@ -108,9 +109,12 @@ class WebApi:
     async def say(self, request: Request) -> Response:
         body = await _json(request)
         text = body.get("text")
-        if not isinstance(text, str) or not text.strip():
+        if isinstance(text, str) and len(text) > MAX_UTTERANCE:
+            raise BadRequest(f"an utterance is at most {MAX_UTTERANCE} characters")
+        cleaned = clean_utterance(text)  # control characters become spaces
+        if cleaned is None:
             raise BadRequest("type something to say")
-        result = await _off_loop(self.need_control().say, text.strip())
+        result = await _off_loop(self.need_control().say, cleaned)
         return JSONResponse({"ok": True, **(result or {})})
 
     async def walk(self, request: Request) -> Response:

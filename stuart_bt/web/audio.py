@@ -6,7 +6,7 @@ Protocol (every message the server sends is strict JSON text):
 |---|---|
 | ``{"type": "start", "rate": 48000}`` | the button is pressed: a recording at ``rate`` Hz begins |
 | binary frames | mono little-endian int16 PCM at that rate, at most :data:`MAX_FRAME` bytes each |
-| ``{"type": "stop"}`` | released: transcribe what came and submit it to the mission executor |
+| ``{"type": "stop"}`` | released: transcribe what came and say it to the robot (missions, or the running tree) |
 | ``{"type": "cancel"}`` | drop the recording |
 
 The server answers ``{"type": "recording", "rate", "max_s"}`` to a start, ``{"type": "cut",
@@ -82,7 +82,7 @@ class Recording:
 
 class TalkSession:
     """The state of one ``/ws/audio`` connection; ``hear(samples, ended_at) -> dict`` does the
-    recognition (blocking) and ``None`` means this server cannot hear (not a mission server)."""
+    recognition (blocking) and ``None`` means this server cannot hear (a replay)."""
 
     def __init__(self, websocket: WebSocket, hear: Any) -> None:
         self.ws = websocket
@@ -116,7 +116,7 @@ class TalkSession:
 
     async def start(self, rate: Any) -> None:
         if self.hear is None:
-            raise Refused("push-to-talk needs a mission server: stuart-bt serve --mission")
+            raise Refused("push-to-talk needs a robot: this is the replay of a saved log")
         if self.recording is not None:
             raise Refused("already recording: one recording at a time (send stop first)")
         if isinstance(rate, bool) or not isinstance(rate, int) or not RATES[0] <= rate <= RATES[1]:

@@ -2,7 +2,10 @@
 
 Two kinds of robot sit behind the page. :class:`TreeControl` runs one tree file on a
 :class:`~stuart_bt.run.session.Session` (the same daemons for the whole serve): run, stop, continue,
-and small trees of its own for "walk here", "go to marker" and "play this gesture".
+and small trees of its own for "walk here", "go to marker" and "play this gesture"; what is typed
+in the console (or said with push-to-talk) while the tree runs goes to a
+:class:`~stuart_bt.mission.tour_talk.TourTalk` for that run (a question is answered at the next
+pause in speech, "stop" holds the tree, "continue" lets it go on).
 :class:`MissionControl` wraps a :class:`~stuart_bt.mission.executor.MissionExecutor`: what is
 typed in the console is submitted as an utterance; stop and continue are said, as a person would.
 
@@ -22,7 +25,9 @@ from typing import Any
 from ..core.errors import StuartError
 from ..core.events import Event, EventStream
 from ..core.world import Marker
+from ..language import Parser, Resolver
 from ..mission.running import failed_leaf, failure_reason
+from ..mission.tour_talk import TourTalk
 from ..run.session import RunOptions, Session
 from ..tree.spec import Location, NodeSpec, TreeSpec
 
@@ -50,7 +55,7 @@ class TreeControl:
 
     mode = "tree"
 
-    def __init__(self, spec: TreeSpec, options: RunOptions, autostart: bool = True) -> None:
+    def __init__(self, spec: TreeSpec, options: RunOptions, autostart: bool = True, require_wake: bool = True) -> None:
         self.spec = spec
         self.session = Session(spec, options)
         self.autostart = autostart
@@ -63,6 +68,10 @@ class TreeControl:
         self._worker: threading.Thread | None = None
         self._closing = threading.Event()
         self._world_client: Any = None
+        self._talk: TourTalk | None = None  # the served tree's, while it runs
+        self._parser = Parser(require_wake=require_wake)
+        self._resolver = Resolver.from_files(spec.markers_file)
+        self._ears: Any = None  # BrowserEars, made on the first push-to-talk (it loads hearing)
 
     @property
     def events(self) -> EventStream:
@@ -92,10 +101,13 @@ class TreeControl:
 
     # -- commands -----------------------------------------------------------------------------------
     def state(self) -> dict[str, Any]:
+        """``held``: why the running tree is held (a stop said, a question being answered), else None."""
         with self._lock:
-            job = self._current
+            job, executor, talk = self._current, self._executor, self._talk
+        said_stop = talk is not None and talk.stopped_by_user
         return {"mode": self.mode, "busy": job is not None, "running": job.label if job else None,
-                "can_continue": self._stopped_main and job is None}
+                "held": executor.hold_reason if executor is not None else None,
+                "can_continue": (self._stopped_main and job is None) or said_stop}
 
     def run(self) -> None:
         """The served tree from its start."""
@@ -109,8 +121,14 @@ class TreeControl:
             self._executor.request_stop("stopped from the web view")
 
     def resume(self) -> None:
-        """Continue the served tree: its top-level steps that already succeeded are skipped
-        (for a sequence root); the step that was stopped starts again."""
+        """Continue the served tree: held by a "stop" said, it goes on (as "continue" said would);
+        stopped, its top-level steps that already succeeded are skipped (for a sequence root) and
+        the step that was stopped starts again."""
+        with self._lock:
+            talk = self._talk
+        if talk is not None and talk.stopped_by_user:
+            talk.submit(f"{WAKE}, continue", source="web")
+            return
         if not self._stopped_main:
             raise ControlError("nothing to continue: the tree was not stopped")
         root = self.spec.root
@@ -120,8 +138,30 @@ class TreeControl:
         spec = self.spec if rest is None else replace(self.spec, root=replace(root, children=rest))
         self._submit(Job(spec, "continue", main=True))
 
-    def say(self, text: str) -> None:
-        raise ControlError("the console needs a mission server: stuart-bt serve --mission")
+    def say(self, text: str) -> dict[str, Any]:
+        """An utterance to the running tree; what it was understood as."""
+        command = self._talking().submit(text, source="web")
+        return {"kind": command.kind, "intents": [i.to_dict() for i in command.intents]}
+
+    def hear(self, samples: Any, ended_at: float) -> dict[str, Any]:
+        """One utterance from the console's push-to-talk (16 kHz mono int16), heard and said to
+        the running tree."""
+        talk = self._talking()
+        with self._lock:
+            if self._ears is None:
+                from .ears import BrowserEars
+
+                self._ears = BrowserEars()
+            ears = self._ears
+        return ears.hear(talk, samples, ended_at)
+
+    def _talking(self) -> TourTalk:
+        with self._lock:
+            talk = self._talk
+        if talk is None:
+            raise ControlError("nothing is running to talk to: Run starts the tree, and what is said then goes to "
+                               "it (stuart-bt serve --mission takes commands)")
+        return talk
 
     def walk(self, x: float, y: float, yaw: float | None) -> dict[str, Any]:
         """Walk to a map pose; ``{"run": id}``: the ``run`` events with that id say how it ends."""
@@ -190,15 +230,22 @@ class TreeControl:
 
     def _run(self, job: Job) -> None:
         executor = self.session.executor_for(job.spec)
+        talk = TourTalk(self.session, executor, self._parser, self._resolver) if job.main else None
         with self._lock:
-            self._executor = executor
+            self._executor, self._talk = executor, talk
             if self._closing.is_set():
                 executor.request_stop("shutting down")
         if job.main:
             self._stopped_main = False
         self.events.publish("run", phase="start", id=job.id, tree=job.spec.file, label=job.label,
                             backend=self.session.options.backend)
-        outcome = executor.run(self.session.options.max_duration)
+        try:
+            outcome = executor.run(self.session.options.max_duration)
+        finally:
+            with self._lock:
+                self._talk = None
+            if talk is not None:
+                talk.close()
         reason = outcome.reason
         if outcome.status == "FAILURE":  # why: the reason of the leaf whose failure failed the tree
             reason = failure_reason(self.session, failed_leaf(executor.root), outcome)
@@ -234,7 +281,7 @@ class MissionControl:
 
         self.robot = MissionExecutor(options)
         self.markers_file = self.robot.markers_file
-        self.ears = BrowserEars(self.robot)
+        self.ears = BrowserEars()
 
     @property
     def events(self) -> EventStream:
@@ -252,7 +299,7 @@ class MissionControl:
         self.robot.close()
 
     def state(self) -> dict[str, Any]:
-        return {"mode": self.mode, "busy": self.robot.busy, "running": None,
+        return {"mode": self.mode, "busy": self.robot.busy, "running": None, "held": None,
                 "can_continue": self.robot.halted is not None}
 
     def say(self, text: str) -> dict[str, Any]:
@@ -261,7 +308,7 @@ class MissionControl:
 
     def hear(self, samples: Any, ended_at: float) -> dict[str, Any]:
         """One utterance from the console's push-to-talk (16 kHz mono int16), heard and submitted."""
-        return self.ears.hear(samples, ended_at)
+        return self.ears.hear(self.robot, samples, ended_at)
 
     def run(self) -> None:
         raise ControlError("a mission server runs what is said; type it in the console")

@@ -1,6 +1,8 @@
-// The mission console: type what the speech recogniser would hear; see how it was understood
-// (intents), the missions (queue), the plan as compiled into a tree, and what the robot says.
-// Everything shown comes from events (utterance, mission, tree, reply, command, leaf, warning).
+// The console: type what the speech recogniser would hear; see how it was understood (intents),
+// the missions (queue), the plan as compiled into a tree, and what the robot says. Serving one
+// tree, what is said goes to that tree while it runs: answers, and the tree held and going on.
+// Everything shown comes from events (utterance, mission, tree, reply, command, leaf, hold,
+// resume, warning).
 
 import { act, el, postJson, short } from "./api.js";
 import { PushToTalk } from "./talk.js";
@@ -81,8 +83,15 @@ function describe(event) {
       const extra = event.reason || event.status || (event.tasks || []).join(", ");
       return ["mission", `${event.id} ${event.phase}${extra ? ": " + extra : ""}`];
     }
-    case "reply":
-      return ["reply", `“${event.text}”${event.gestures && event.gestures.length ? ` (gestures: ${event.gestures.join(", ")})` : ""}`];
+    case "reply": {
+      const gestures = event.gestures && event.gestures.length ? ` (gestures: ${event.gestures.join(", ")})` : "";
+      const from = event.source ? ` (from ${event.source})` : "";
+      return ["reply", `“${event.text}”${gestures}${from}`];
+    }
+    case "hold":
+      return ["hold", `the tree is held: ${event.reason || "hold"}${/^stop said/.test(event.reason || "") ? " (say continue, or press Continue)" : ""}`];
+    case "resume":
+      return ["resume", "the tree goes on"];
     case "command":
       if (event.family === "tts" && event.cmd === "say") return ["says", `“${(event.args || {}).text}”`];
       if (event.cmd === "play") return ["gesture", short((event.args || {}).name || (event.args || {}).sequence || "recorded")];

@@ -24,7 +24,7 @@ store.on("events", (batch) => {
   console_.onEvents(batch);
   map.onEvents(batch);
   jobs.onEvents(batch);
-  if (batch.some((e) => e.kind === "run" || e.kind === "mission" || e.kind === "halt")) refreshState();
+  if (batch.some((e) => ["run", "mission", "halt", "hold", "resume"].includes(e.kind))) refreshState();
 });
 
 let opened = false; // a view was chosen (by the address, a tab or the server's mode)
@@ -54,6 +54,9 @@ connect({
     document.getElementById("what").textContent = hello.replay
       ? `replay of ${info.file}` : `${info.mode === "mission" ? "missions" : info.file || ""} · ${info.backend || ""}`;
     document.body.dataset.mode = hello.replay ? "replay" : info.mode;
+    if (info.mode === "tree") { // what is said goes to the running tree: a question, stop, continue
+      document.getElementById("say-input").placeholder = "Hey Stuart, what happens in the drone cage?";
+    }
     refreshState();
   },
   onEvents: (batch) => store.add(batch),
@@ -64,8 +67,9 @@ const runPill = document.getElementById("run-state");
 async function refreshState() {
   let state;
   try { state = await getJson("/api/state"); } catch { return; }
-  runPill.textContent = state.mode === "replay" ? "replay" : state.busy ? `busy${state.running ? ": " + state.running : ""}` : "idle";
-  runPill.className = `pill ${state.busy ? "busy" : ""}`;
+  runPill.textContent = state.mode === "replay" ? "replay" : state.held ? `held: ${state.held}`
+    : state.busy ? `busy${state.running ? ": " + state.running : ""}` : "idle";
+  runPill.className = `pill ${state.held ? "held" : state.busy ? "busy" : ""}`;
   document.getElementById("btn-run").disabled = state.mode !== "tree" || state.busy;
   document.getElementById("btn-stop").disabled = state.mode === "replay" || !state.busy;
   document.getElementById("btn-continue").disabled = state.mode === "replay" || !state.can_continue;
