@@ -155,22 +155,14 @@ class DaemonClient:
         ``path`` (the sending tree node) goes on the command's events."""
         args = args or {}
         request = Request(f"{self._prefix}{next(self._ids)}", self.family, cmd, args, path=path)
+        self.events.publish("command", path, family=self.family, id=request.id, cmd=cmd, args=args)
         if self._write_fd is None:
-            self._publish_command(request)
             self._fail(request, "daemon_down", self._down_reason)
             return request
         self._pending[request.id] = request
         self._out += p.encode(p.request(request.id, cmd, args))
-        self.flush()
-        # The event after the bytes: it is published while the daemon already works on the
-        # command, not on the round trip's path. It still comes before any event of the reply,
-        # which only a later poll on this same thread can read.
-        self._publish_command(request)
+        self.flush()  # last: the caller then waits at once, while the daemon works
         return request
-
-    def _publish_command(self, request: Request) -> None:
-        self.events.publish("command", request.path, family=self.family, id=request.id, cmd=request.cmd,
-                            args=request.args)
 
     def keep_alive(self) -> None:
         """Tell the daemon the framework still runs (its watchdog); no reply, no event."""
