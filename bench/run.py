@@ -15,15 +15,18 @@ loaded machine should not fail a build), 1 when one crashed, 2 for bad arguments
 from __future__ import annotations
 
 import argparse
+import contextlib
 import datetime
 import importlib.metadata
 import json
 import os
 import platform
+import shutil
 import sys
+import tempfile
 import time
 import traceback
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -127,6 +130,27 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+@contextlib.contextmanager
+def private_temporary_folder() -> Iterator[Path]:
+    """Everything the benchmarks and their processes write to a temporary folder goes to one of
+    this run's own, removed at the end; so does PortAudio's PulseAudio client (listing
+    microphones), which would otherwise leave a runtime folder in /tmp linked from ~/.config/pulse."""
+    folder = Path(tempfile.mkdtemp(prefix="stuart_bt-bench-"))
+    saved = {k: os.environ.get(k) for k in ("TMPDIR", "PULSE_RUNTIME_PATH")}
+    os.environ["TMPDIR"], os.environ["PULSE_RUNTIME_PATH"] = str(folder), str(folder / "pulse")
+    tempfile.tempdir = None  # gettempdir() looks at TMPDIR again
+    try:
+        yield folder
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+        tempfile.tempdir = None
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     try:
         args = parse_args(argv)
@@ -136,13 +160,14 @@ def main(argv: list[str] | None = None) -> int:
     results: list[Result] = []
     errors: dict[str, str] = {}
     started = time.monotonic()
-    for name in selected:
-        print(f"running {name}{' (quick)' if args.quick else ''} ...", file=sys.stderr, flush=True)
-        try:
-            results += BENCHMARKS[name](args.quick)
-        except Exception as e:  # noqa: BLE001 - one broken benchmark must not hide the others' figures
-            traceback.print_exc()
-            errors[name] = f"{type(e).__name__}: {e}"
+    with private_temporary_folder():
+        for name in selected:
+            print(f"running {name}{' (quick)' if args.quick else ''} ...", file=sys.stderr, flush=True)
+            try:
+                results += BENCHMARKS[name](args.quick)
+            except Exception as e:  # noqa: BLE001 - one broken benchmark must not hide the others' figures
+                traceback.print_exc()
+                errors[name] = f"{type(e).__name__}: {e}"
     report = {
         "machine": machine(),
         "packages": package_versions(),
