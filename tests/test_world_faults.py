@@ -19,6 +19,10 @@ from pathlib import Path
 
 import pytest
 
+from stuart_bt.daemon.supervisor import DaemonStartError
+from stuart_bt.run.session import RunOptions, Session
+from stuart_bt.tree.loader import load_tree
+
 pytest.importorskip("mujoco", reason="the world server needs the 'sim' extra")
 
 REPO = Path(__file__).resolve().parents[1]
@@ -178,3 +182,25 @@ def test_killing_the_tree_process_leaves_no_world_daemon_or_world_folder_behind(
     took = _wait(lambda: not [pid for pid in run.started if _alive(pid)], "the world and daemons to exit")
     _wait(lambda: not folder.exists(), f"{folder} to be removed", timeout=10)
     print(f"world and daemons gone {took:.2f} s after the tree process was killed")
+
+
+class _WorldKilledBeforeTheDaemons(Session):
+    """A session whose world server is killed the moment it is up, before a daemon starts."""
+
+    def _start_world(self, start) -> None:
+        super()._start_world(start)
+        os.kill(self.world.pid, signal.SIGKILL)
+        self.world.proc.wait(timeout=WAIT)
+
+
+@pytest.mark.slow
+def test_a_world_that_dies_while_the_daemons_start_is_named_as_the_cause():
+    session = _WorldKilledBeforeTheDaemons(load_tree(TOUR), RunOptions(backend="sim"))
+    with pytest.raises(DaemonStartError) as failed:
+        session.start()
+    session.close()
+    message = str(failed.value)
+    assert message.startswith("the simulator's world server") and "killed by SIGKILL" in message, message
+    assert "while the daemons were starting" in message and "Traceback" not in message
+    assert session.supervisor is not None
+    assert all(d.process is None or d.process.poll() is not None for d in session.supervisor._daemons.values())

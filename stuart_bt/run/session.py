@@ -26,7 +26,7 @@ from ..core.catalogue import LEAVES
 from ..core.clock import Clock, ScaledClock
 from ..core.events import Event, EventStream, JsonlWriter
 from ..core.world import Pose
-from ..daemon.supervisor import Supervisor
+from ..daemon.supervisor import DaemonStartError, Supervisor
 from ..leaves import RunContext, make_leaf
 from ..maps.markers import load_markers
 from ..tree.builder import build
@@ -117,7 +117,7 @@ class Session:
                 handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
                 watchdog=self.options.watchdog, run_dir=self.run_dir,
             )
-            self.supervisor.start()
+            self._start_daemons()
         self.executor = self.executor_for(self.spec)
         if self.supervisor is not None and "loco" in self.supervisor.families:
             self.supervisor.client("loco").state_listeners.append(self._track_pose)
@@ -153,6 +153,27 @@ class Session:
         self.clock = self.world.clock(driver=True)
         self.events.clock = self.clock
 
+    def _start_daemons(self) -> None:
+        """Start the daemons; when the world server died meanwhile, that is the error to give (a
+        daemon that lost its world mid-handshake only knows that its socket broke)."""
+        assert self.supervisor is not None
+        try:
+            self.supervisor.start()
+        except DaemonStartError:
+            lost = self._world_death()
+            if lost is None:
+                raise
+            self.lost = lost  # the logs are kept, and the user told where
+            raise DaemonStartError(f"{lost} while the daemons were starting") from None
+
+    def _world_death(self) -> str | None:
+        """One sentence on how the world server died, or None while it runs (or without one)."""
+        code = self.world.proc.poll() if self.world is not None else None
+        if code is None:
+            return None
+        how = f"killed by {signal.Signals(-code).name}" if code < 0 else f"exit code {code}"
+        return f"the simulator's world server (pid {self.world.pid}) died ({how})"
+
     def _note_trouble(self, event: Event) -> None:
         if self._trouble is None and event.kind == "daemon_state" and \
                 event.data.get("state") in ("died", "hung", "faulty"):
@@ -163,11 +184,9 @@ class Session:
         Checked before every tick (a ``waitpid`` that does not block), so the tree stops on the
         next tick and every daemon is told to stop, with one sentence that says what happened."""
         if self.lost is None:
-            code = self.world.proc.poll()
-            if code is None:
+            self.lost = self._world_death()
+            if self.lost is None:
                 return
-            how = f"killed by {signal.Signals(-code).name}" if code < 0 else f"exit code {code}"
-            self.lost = f"the simulator's world server (pid {self.world.pid}) died ({how})"
             self.events.publish("warning", message=f"{self.lost}; stopping the run")
         executor.request_stop(self.lost, status="ERROR")
 
