@@ -29,11 +29,23 @@ def in_doubt(got: ParseResult) -> bool:
     return bool(got.doubt) or unresolved
 
 
+def same(got: TaskIntent, want: TaskIntent) -> bool:
+    """The same intent as the robot acts on it: a target may be spoken another way ("station 5",
+    "humanoid corner") as long as it resolves to the same marker or object."""
+    if got.same_as(want):
+        return True
+    spoken_apart = TaskIntent(got.action, want.target, got.x, got.y, got.yaw, got.raw_text)
+    if not spoken_apart.same_as(want):
+        return False
+    a, b = RESOLVER.resolve(got), RESOLVER.resolve(want)
+    return a is not None and b is not None and a.ok and a.name == b.name
+
+
 def right(row: dict, got: ParseResult) -> bool:
     if row["doubt"]:
         return not got.intents or in_doubt(got)
     want = [TaskIntent.from_dict(i) for i in row["intents"]]
-    return (len(got.intents) == len(want) and all(a.same_as(b) for a, b in zip(got.intents, want, strict=True))
+    return (len(got.intents) == len(want) and all(same(a, b) for a, b in zip(got.intents, want, strict=True))
             and not in_doubt(got))
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pytest
 
+from stuart_bt.language.parse import Parser
 from stuart_bt.language.wake import WakeFilter, key_distance, phonetic_key
 
 
@@ -133,3 +134,39 @@ def test_a_term_of_address_after_a_bare_name_belongs_to_it():
     match = wake.match("Stuart mate, do us a favour and find my cup.")
     assert match.woke and match.command == "do us a favour and find my cup."
     assert not wake.match("Stuart mate is a nice name").woke
+
+
+@pytest.mark.parametrize("utterance", ["stuart go to the reading room",
+                                       "stuart stop stop stop you're going the wrong way",
+                                       "stuart can you please go to station four",
+                                       "stuart when you get to the workbench find the screwdriver"])
+def test_a_bare_name_with_no_pause_wakes_when_a_command_follows(utterance):
+    got = Parser().parse(utterance)
+    assert got.wake and got.intents, got
+
+
+@pytest.mark.parametrize("utterance", ["stuart what can you do", "stuart do you like the kitchen"])
+def test_a_bare_name_with_no_pause_wakes_for_a_question_put_to_the_robot(utterance):
+    got = Parser().parse(utterance)
+    assert got.wake and got.conversational and not got.intents, got
+
+
+@pytest.mark.parametrize("utterance", ["stuart went to the kitchen", "stuart is in the kitchen",
+                                       "stuart turns left at the door", "stuart said go to the kitchen",
+                                       "stuart walking to the kitchen is slow", "stuart would like to go home"])
+def test_a_bare_name_with_no_pause_before_a_sentence_about_the_robot_does_not_wake(utterance):
+    got = Parser().parse(utterance)
+    assert not got.wake and not got.intents, got
+
+
+@pytest.mark.parametrize(("utterance", "command"), [("Would you mind picking up the cup, Stuart?",
+                                                     "Would you mind picking up the cup?"),
+                                                    ("Go to the kitchen, Stuart.", "Go to the kitchen")])
+def test_the_name_last_after_a_pause_addresses_what_came_before_it(utterance, command):
+    got = Parser().parse(utterance)
+    assert got.wake and got.command == command and got.intents, got
+
+
+@pytest.mark.parametrize("utterance", ["I was talking to Stuart", "go to the kitchen stuart"])
+def test_the_name_last_without_a_pause_before_it_does_not_wake(utterance):
+    assert not Parser().parse(utterance).wake

@@ -30,8 +30,14 @@ from typing import Any
 from ..core.jsonfile import to_json
 from .doubt import Doubt, Limits, doubts
 from .grammar import Coverage, Defaults, Grammar, coverage
+from .grammar.driver import TALK
+from .grammar.lexicon import MODALS
 from .intents import TaskIntent
-from .wake import GREETINGS, WakeFilter
+from .wake import GREETINGS, WakeFilter, WakeMatch
+
+# words that open a question put to the robot, after its name ("stuart what can you do")
+QUESTION_WORDS = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "how", "hows", "which"})
+ASKING = frozenset({"do", "did", "are", "were", "have", "should", "shall"})  # + "you": "stuart do you ..."
 
 
 @dataclass
@@ -69,9 +75,28 @@ class Parser:
         self.require_wake = require_wake
         self.limits = limits or Limits()
 
+    def wake_match(self, utterance: str) -> WakeMatch:
+        """The wake filter's verdict, with one judgement only the grammar can make: the name
+        alone with no pause after it ("stuart go to the kitchen", as a recogniser writes it)
+        wakes when what follows is said to the robot: a command that does not open as talk, or a
+        question to it ("stuart what can you do"), never a sentence about it ("stuart went to
+        the kitchen", "stuart is in the kitchen")."""
+        wake = self.wake_filter.match(utterance)
+        if wake.unpaused and self._said_to_the_robot(wake.command):
+            wake.woke = True
+        return wake
+
+    def _said_to_the_robot(self, rest: str) -> bool:
+        reading = self.grammar.read(rest)
+        if reading.intents:  # a command, unless its first word was read as talk
+            return reading.marks[:1] != bytes((TALK,))
+        first = reading.tokens[:2]
+        return bool(first) and (first[0] in QUESTION_WORDS or (len(first) == 2 and first[1] == "you" and (
+            first[0] in MODALS or first[0] in ASKING)))
+
     def parse(self, utterance: str) -> ParseResult:
         """The result for one utterance (never raises on text: any string gives a result)."""
-        wake = self.wake_filter.match(utterance)
+        wake = self.wake_match(utterance)
         if not wake.woke:
             if not self.require_wake:
                 return self._command(utterance, False, utterance.strip())

@@ -39,7 +39,7 @@ GREETING_VARIANTS: dict[str, tuple[str, ...]] = {
 FILLERS: frozenset[str] = frozenset({
     "um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "em", "hm", "hmm", "hmmm", "mm", "mmm",
     "ah", "ahh", "oh", "ooh", "so", "well", "yeah", "yes", "right", "alright", "now", "and", "but",
-    "there", "dear", "please",
+    "there", "dear", "please", "then",
 })
 _TOKEN = re.compile(r"[^\W_]+(?:['’][^\W_]+)*")
 _PAUSE = frozenset(",.!?:;…-–—")
@@ -134,6 +134,10 @@ class WakeMatch:
     phrase: str = ""
     heard_name: str = ""
     distance: float = 0.0
+    # the name alone, with no pause after it ("stuart go to the kitchen", as recognisers write
+    # it): ``woke`` is False and ``command`` the rest; whether that rest is said to the robot is
+    # for the grammar to judge (:meth:`stuart_bt.language.parse.Parser.wake_match`)
+    unpaused: bool = False
 
 
 
@@ -185,8 +189,35 @@ class WakeFilter:
         return d
 
     def match(self, utterance: str) -> WakeMatch:
-        """The wake phrase at the start of ``utterance`` and the command after it, or
-        a match with ``woke`` False."""
+        """The wake phrase at the start of ``utterance`` and the command after it, or the name
+        at its end after a pause ("To the kitchen, Stuart!") and the command before it, or a
+        match with ``woke`` False."""
+        found = self._at_start(utterance)
+        if found.woke or found.unpaused:
+            return found
+        return self._at_end(utterance) or found
+
+    def _at_end(self, utterance: str) -> WakeMatch | None:
+        """The name as the last words, after a pause: the whole sentence before it was said to
+        the robot ("Would you mind picking up the cup, Stuart?"). Its final "?" is kept."""
+        body = utterance[-_LOOK_AHEAD_CHARS:].rstrip(_STRIP)
+        words = list(_TOKEN.finditer(body))
+        for k in range(1, min(self._max_span, len(words) - 1) + 1):
+            first = words[-k].start()
+            before = body[:first].rstrip(" \t")
+            if not before or before[-1] not in _PAUSE:
+                continue
+            heard = "".join(m.group().lower() for m in words[-k:])
+            d = self.distance(heard)
+            if d <= self.tolerance:
+                start = len(utterance) - len(utterance[-_LOOK_AHEAD_CHARS:])
+                command = (utterance[:start] + before).lstrip(_STRIP).rstrip(_STRIP)
+                question = "?" if utterance.rstrip().endswith("?") else ""
+                heard_name = " ".join(m.group().lower() for m in words[-k:])
+                return WakeMatch(True, command + question, body[first:], heard_name, d)
+        return None
+
+    def _at_start(self, utterance: str) -> WakeMatch:
         head = utterance[:_LOOK_AHEAD_CHARS]
         low = head.lower()
         if len(low) != len(head):  # lower() changed a length: the slow, exact way
@@ -206,10 +237,12 @@ class WakeFilter:
         if span is None and not greeted:
             span = self._fused(toks[i])  # "heystuart": greeting and name run together
             greeted = span is not None
+        misheard = False
         if span is None and not greeted and _sounds_like_hey(toks[i]):
             span = self._name_at(toks, i + 1)  # "case Stuart, stop": a greeting misheard; a pause must follow
             if span is not None:
                 span = (span[0] + 1, span[1] + MISHEARD_GREETING_COST)
+                misheard = True
         if span is None:
             return WakeMatch(False)
         k, dist = span
@@ -226,8 +259,11 @@ class WakeFilter:
             term = _ADDRESS.match(after)  # "Stuart mate, ...": a term of address belongs to the name
             if term and term.end() < len(after) and after[term.end()] in _PAUSE:
                 rest, after = after[term.end():], after[term.end():]
-            if not self.bare_name or (after and after[0] not in _PAUSE):
+            if not self.bare_name:
                 return WakeMatch(False)
+            if after and after[0] not in _PAUSE:
+                return WakeMatch(False, rest.lstrip(_STRIP).rstrip(), utterance[offsets[0]:end],
+                                 " ".join(toks[i:i + k]), dist, unpaused=not misheard)
         heard = " ".join(toks[i:i + k])
         return WakeMatch(True, rest.lstrip(_STRIP).rstrip(), utterance[offsets[0]:end], heard, dist)
 

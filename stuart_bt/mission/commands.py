@@ -59,7 +59,7 @@ class Command:
 def interpret(parser: Parser, utterance: str, woken: bool = False) -> Command:
     """Classify one utterance (never raises on text). ``woken``: the wake phrase was already heard
     (a channel that filtered it, e.g. the ROS bridge's ``/llm/input``), so it is not required."""
-    wake = parser.wake_filter.match(utterance)
+    wake = parser.wake_match(utterance)
     if not wake.woke and parser.require_wake and not woken:
         return Command(IGNORE, ParseResult(utterance))
     text = (wake.command if wake.woke else utterance).strip()

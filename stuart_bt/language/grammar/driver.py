@@ -51,6 +51,7 @@ from .lexicon import (
     NP_STOP,
     PAST,
     RETRACTIONS_BY_FIRST,
+    SIGN_OFFS_BY_FIRST,
     SUBORDINATORS,
     TIME_OPENERS,
 )
@@ -166,6 +167,11 @@ class _CommandReader:
         if t in LIST_LABELS and word_value(s.at(self.i + 1)) is not None and s.at(self.i + 2) == ",":
             self._mark(self.i, self.i + 3, USED)  # "item two, locate the cup": a label, not a second place
             self.i += 3
+            return True
+        signed = s.phrase_at(self.i, SIGN_OFFS_BY_FIRST) if t in SIGN_OFFS_BY_FIRST and self.out else None
+        if signed and may_end(s, self.i + len(signed)):  # "move forward, come on": said, not asked
+            self._mark(self.i, self.i + len(signed), USED)
+            self.i += len(signed)
             return True
         taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) and (
             not self.dead) else 0

@@ -16,7 +16,8 @@ def by_first(phrases: Iterable[tuple[str, ...]]) -> dict[str, tuple[tuple[str, .
         index[phrase[0]] = index.get(phrase[0], ()) + (phrase,)
     return index
 
-DISFLUENCIES = frozenset({"um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "hmm", "hm", "mm", "mmm", "ah", "ahh"})
+DISFLUENCIES = frozenset({"um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "hmm", "hm", "mm", "mmm", "ah", "ahh",
+                          "ha", "hah", "haha", "hahaha", "heh", "hehe", "lol"})  # hesitations and laughter
 
 SPLITS: dict[str, tuple[str, ...]] = {
     "pickup": ("pick", "up"), "highfive": ("high", "five"), "uturn": ("u", "turn"), "xray": ("x", "ray"),
@@ -74,12 +75,33 @@ NP_LEADERS = frozenset({"marker", "waypoint", "location", "position", "object", 
 
 RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, but not at its start
 
-TRAILING = frozenset({"please", "now", "quickly", "slowly", "carefully", "immediately", "again", "too", "first",
-                      "thanks", "thank", "you", "ok", "asap", "gently", "instead", "also", "fast", "safely",
-                      "right", "away", "straight", "real", "quick", "for", "me", "us", "as", "well", "if", "can",
-                      "could", "will", "would", "possible", "buddy", "mate", "pal", "robot", "friend", "then",
-                      "at", "once", "yourself", "soon", "sir", "dude", "man", "there", "here", "over", "shall",
-                      "we", "yeah", "alright", "later", "today", "tonight", "tomorrow", "sometime"})
+# what people call the robot (or the room) after a command: "go to the kitchen, mate", "now lad"
+ADDRESS_TERMS = frozenset({"buddy", "mate", "pal", "robot", "friend", "sir", "dude", "man", "lad", "lads", "boss",
+                           "chief", "champ", "bro", "mister", "madam", "maam", "love", "dear", "darling", "son",
+                           "kid", "guys", "folks", "everyone", "everybody", "fella", "fellow", "partner", "sunshine",
+                           "captain", "pet", "chap", "guy"})
+
+# thanks and praise after a command: "cheers", "thanks a lot", "much appreciated", "lovely"
+THANKS = frozenset({"thanks", "thank", "cheers", "ta", "thx", "ty", "lot", "bunch", "million", "much", "appreciated",
+                    "lovely", "great", "brilliant", "cool", "nice", "awesome", "perfect", "wonderful", "fantastic",
+                    "legend", "champion", "good"})
+
+TRAILING = ADDRESS_TERMS | THANKS | frozenset({
+    "please", "now", "quickly", "slowly", "carefully", "immediately", "again", "too", "first", "you", "ok", "asap",
+    "gently", "instead", "also", "fast", "safely", "right", "away", "straight", "real", "quick", "for", "me", "us",
+    "as", "well", "if", "can", "could", "will", "would", "possible", "then", "at", "once", "yourself", "soon",
+    "there", "here", "over", "shall", "we", "yeah", "alright", "later", "today", "tonight", "tomorrow", "sometime"})
+
+# encouragements said as a clause of their own after a command ("move forward, come on", "off you
+# go"): filler, not a new command
+SIGN_OFFS: tuple[tuple[str, ...], ...] = (
+    # ("chop",) is "chop chop" once the tokenizer has dropped the repeat
+    ("come", "on"), ("go", "on"), ("chop",), ("off", "you", "go"), ("there", "you", "go"),
+    ("there", "we", "go"), ("here", "we", "go"), ("lets", "go"), ("good", "job"), ("well", "done"), ("nice", "one"),
+    ("thank", "you"), ("thanks",), ("cheers",), ("much", "appreciated"), ("if", "you", "dont", "mind"),
+    ("when", "you", "can"), ("when", "youre", "ready"), ("in", "your", "own", "time"), ("no", "rush"),
+    ("take", "your", "time"), ("good", "lad"), ("good", "robot"), ("atta", "boy"), ("you", "got", "this"),
+)
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
                 "which", "whose", "whom", "whatever", "wat"})
@@ -116,6 +138,8 @@ WISH_QUESTIONS_BY_FIRST = by_first(WISH_QUESTIONS)
 
 POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("please",), ("kindly",), ("just",), ("possibly",), ("perhaps", "you", "could"),
+    ("do", "you", "think", "you", "could"), ("do", "you", "think", "you", "can"), ("you", "think", "you", "could"),
+    ("do", "you", "reckon", "you", "could"), ("do", "you", "reckon", "you", "can"), ("reckon", "you", "could"),
     ("i", "was", "wondering", "if", "you", "could"), ("i", "wonder", "if", "you", "could"),
     ("i", "was", "wondering", "whether", "you", "could"), ("i", "was", "hoping", "you", "could"),
     ("i", "hope", "you", "can"), ("any", "chance", "you", "could"), ("is", "there", "any", "chance", "you", "could"),
@@ -453,10 +477,15 @@ RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("forget", "it"), ("forget", "that"), ("forget", "everything"), ("forget", "all", "that"), ("cancel", "that"),
     ("on", "second", "thought"), ("on", "second", "thoughts"), ("dont", "bother"), ("nah",), ("no", "dont"),
     ("i", "take", "that", "back"), ("belay", "that"), ("as", "you", "were"), ("dont",), ("do", "not"),
-    ("dont", "worry"), ("no", "worries"),
+    ("dont", "worry"), ("no", "worries"), ("ignore", "that"), ("ignore", "me"),
+    ("disregard", "that"), ("scrap", "that"), ("forget", "about", "it"), ("dont", "worry", "about", "it"),
+    ("having", "a", "laugh"), ("only", "having", "a", "laugh"), ("just", "having", "a", "laugh"),
+    ("only", "messing"), ("just", "messing"), ("im", "messing"), ("only", "teasing"), ("just", "teasing"),
+    ("pulling", "your", "leg"), ("just", "pulling", "your", "leg"), ("only", "pulling", "your", "leg"),
 )
 
 RETRACTIONS_BY_FIRST = by_first(sorted(RETRACTIONS, key=lambda r: (-len(r), r)))
+SIGN_OFFS_BY_FIRST = by_first(sorted(SIGN_OFFS, key=lambda r: (-len(r), r)))
 
 # A question tag turns the sentence before it into a question ("..., right?", "..., wouldn't it?"):
 # one of these words alone, or an auxiliary and a pronoun. "..., will you?" after a command is a
