@@ -111,3 +111,12 @@ def test_a_correction_that_nothing_replaces_takes_the_command_back() -> None:
 def test_memories_punchlines_and_never_minds_move_nothing(command: str, frame: Any) -> None:
     said = "Hey Stuart, " + frame(command)
     assert [i.action for i in PARSER.parse(said).intents if i.action != "stop"] == [], said  # a stop moves nothing
+
+
+@settings(max_examples=100, deadline=None, derandomize=True)
+@given(st.sampled_from(COMMANDS), st.sampled_from(range(len(TALK))),
+       st.sampled_from([", stop", ", actually stop", " but stop right now please", ", just stop", ", oh stop"]))
+def test_a_stop_said_after_talk_still_stops(command: str, frame: int, stop: str) -> None:
+    talk = TALK[frame](command).rstrip(".?")
+    got = PARSER.parse(f"Hey Stuart, {talk}{stop}.")
+    assert [i.action for i in got.intents] == ["stop"], (talk, stop, got.intents)

@@ -219,10 +219,11 @@ class _CommandReader:
         if not self.dead:
             return False
         s, i, t = self.s, self.i, self.toks[self.i]
-        k = i + 1 if t in ("just", "please", "now", "so") else i  # "..., you know what, just stop"
-        if self.toks[i - 1] == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you") or (
-                s.at(k) in ("stop", "halt", "freeze") and may_end(s, k + 1))):
-            self.dead = False
+        k = i + 1 if t in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
+        before = self.toks[i - 1]
+        if (before == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you"))) or (
+                before in (",", "but", "so") and s.at(k) in ("stop", "halt", "freeze") and may_end(s, k + 1)):
+            self.dead = False  # "I know I told you to go there, but stop right now": a stop always wins
             return False
         self.marks[i] = TALK
         self.i += 1
@@ -390,6 +391,9 @@ class _CommandReader:
 # "a bottle of water", "the kitchen by the door"), when they follow a target
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
+
+# words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
+_BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then"})
 
 # words said before a correction or a retraction ("actually, scratch that", "oh no, stop")
 INTERJECTIONS = frozenset({"actually", "oh", "ah", "well", "hmm", "ok", "so", "hang", "on", "hold"})

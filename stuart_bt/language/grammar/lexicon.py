@@ -138,8 +138,6 @@ WISH_QUESTIONS_BY_FIRST = by_first(WISH_QUESTIONS)
 
 POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("please",), ("kindly",), ("just",), ("possibly",), ("perhaps", "you", "could"),
-    ("do", "you", "think", "you", "could"), ("do", "you", "think", "you", "can"), ("you", "think", "you", "could"),
-    ("do", "you", "reckon", "you", "could"), ("do", "you", "reckon", "you", "can"), ("reckon", "you", "could"),
     ("i", "was", "wondering", "if", "you", "could"), ("i", "wonder", "if", "you", "could"),
     ("i", "was", "wondering", "whether", "you", "could"), ("i", "was", "hoping", "you", "could"),
     ("i", "hope", "you", "can"), ("any", "chance", "you", "could"), ("is", "there", "any", "chance", "you", "could"),
