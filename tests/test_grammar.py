@@ -488,3 +488,10 @@ def test_intent_json_round_trip() -> None:
     assert TaskIntent.from_dict(i.to_dict()) == i
     with pytest.raises(ValueError):
         TaskIntent.from_dict({"action": "fly"})
+
+
+@pytest.mark.parametrize(("text", "x"), [("walk forward another metre", 1.0), ("move another two metres", 2.0),
+                                         ("take another step forward", 0.5)])
+def test_another_before_a_unit_is_one_more_of_it(text, x):
+    [move] = parse_command(text)
+    assert move.action == "move_relative" and move.x == pytest.approx(x)

@@ -50,6 +50,7 @@ TALK = [
     lambda c: f"{c}? no, don't.",
     lambda c: f"{c}. no.",
     lambda c: f"{c}, forget it.",
+    lambda c: f"remember when you tried to {c}?",
 ]
 
 

@@ -290,7 +290,7 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
         got = SOUNDS_LIKE[t], i + 1  # "move forward to meters": a recogniser's "two"
     if got is None:
         # "a metre", "an inch", "a full turn", "one full turn" (no number word: one of the unit)
-        k = i + 1 if t in ("a", "an") else i
+        k = i + 1 if t in ("a", "an", "another") else i  # "another metre": one more
         if k < n and toks[k] in WHOLE:
             k += 1
         if k < n and toks[k] in UNITS and (k > i):

@@ -63,7 +63,7 @@ def read_motion_terms(s: ParseState, i: int) -> tuple[tuple[int, int] | None, fl
             if t in ("a", "an") and j + 1 < n and toks[j + 1] in ("few", "couple", "full", "quarter", "half"):
                 pass
             q = read_quantity(toks, j) if (t[0].isdigit() or t in NUMBER_STARTS or (
-                t in SOUNDS_LIKE and j + 1 < n and toks[j + 1] in UNITS)) else None
+                (t in SOUNDS_LIKE or t == "another") and j + 1 < n and toks[j + 1] in UNITS)) else None
             if q is not None:
                 amount, dim = q.value, q.dimension
                 j = q.end

@@ -500,7 +500,8 @@ REQUEST_TAGS = frozenset({"will", "wont", "would", "can", "could"})  # "..., wil
 LIST_LABELS = frozenset({"item", "step", "point", "task", "number", "part", "stage"})
 
 # a sentence opening with these is about the past, not a command ("back when you first arrived, ...")
-TIME_OPENERS = frozenset({("back", "when"), ("back", "then"), ("back", "in"), ("way", "back")})
+TIME_OPENERS = frozenset({("back", "when"), ("back", "then"), ("back", "in"), ("way", "back"),
+                          ("remember", "when"), ("remember", "how"), ("remember", "the")})  # a memory
 
 # parts of the body: a phrase naming one says how to do a thing ("with your teeth", "on one leg"),
 # which the robot cannot choose, not which thing or place is meant
