@@ -14,8 +14,9 @@ $(BIN)/python:
 	scripts/venv.sh $(PYTHON) $(VENV)
 
 # Re-install whenever the package metadata or a compiled module changes (setup.py compiles the
-# grammar with mypyc: stuart_bt/language/compiled.py); one stamp per set of extras.
-COMPILED := $(wildcard stuart_bt/language/*.py stuart_bt/language/grammar/*.py)
+# modules that stuart_bt/language/compiled.py lists with mypyc); one stamp per set of extras.
+COMPILED := $(wildcard stuart_bt/language/grammar/*.py) stuart_bt/language/numbers.py \
+	stuart_bt/language/wake.py stuart_bt/language/compiled.py
 $(VENV)/.stamp-base: pyproject.toml setup.py $(COMPILED) | $(BIN)/python
 	$(PIP) -e .
 	touch $@

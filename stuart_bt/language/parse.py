@@ -30,14 +30,10 @@ from typing import Any
 from ..core.jsonfile import to_json
 from .doubt import Doubt, Limits, doubts
 from .grammar import Coverage, Defaults, Grammar, coverage
-from .grammar.driver import TALK
-from .grammar.lexicon import MODALS
+from .grammar.driver import TALK, Reading
+from .grammar.lexicon import AUX, MODALS, WH
 from .intents import TaskIntent
 from .wake import GREETINGS, WakeFilter, WakeMatch
-
-# words that open a question put to the robot, after its name ("stuart what can you do")
-QUESTION_WORDS = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "how", "hows", "which"})
-ASKING = frozenset({"do", "did", "are", "were", "have", "should", "shall"})  # + "you": "stuart do you ..."
 
 
 @dataclass
@@ -74,6 +70,9 @@ class Parser:
         self.grammar = grammar or Grammar(defaults=defaults, vocatives=self.vocatives)
         self.require_wake = require_wake
         self.limits = limits or Limits()
+        # the reading that decided an unpaused name's wake, kept for the one read of the same text
+        # as the command that follows (one tuple, replaced whole: safe to share between threads)
+        self._kept: tuple[str, Reading] | None = None
 
     def wake_match(self, utterance: str) -> WakeMatch:
         """The wake filter's verdict, with one judgement only the grammar can make: the name
@@ -88,11 +87,16 @@ class Parser:
 
     def _said_to_the_robot(self, rest: str) -> bool:
         reading = self.grammar.read(rest)
+        self._kept = (rest, reading)
         if reading.intents:  # a command, unless its first word was read as talk
             return reading.marks[:1] != bytes((TALK,))
-        first = reading.tokens[:2]
-        return bool(first) and (first[0] in QUESTION_WORDS or (len(first) == 2 and first[1] == "you" and (
-            first[0] in MODALS or first[0] in ASKING)))
+        first = reading.tokens[:2]  # or a question put to it: "stuart what ...", "stuart can you ..."
+        return bool(first) and (first[0] in WH or (len(first) == 2 and first[1] == "you" and (
+            first[0] in MODALS or first[0] in AUX or first[0] in ("do", "have"))))
+
+    def _read(self, text: str) -> Reading:
+        kept, self._kept = self._kept, None
+        return kept[1] if kept is not None and kept[0] == text else self.grammar.read(text)
 
     def parse(self, utterance: str) -> ParseResult:
         """The result for one utterance (never raises on text: any string gives a result)."""
@@ -112,7 +116,7 @@ class Parser:
 
     def read_command(self, command: str) -> ParseResult:
         """The grammar on command text alone (no wake filter): intents, coverage and doubt."""
-        reading = self.grammar.read(command)
+        reading = self._read(command)
         covered = coverage(reading, self.vocatives)
         return ParseResult(command, False, command, reading.intents, not reading.intents, covered,
                            doubts(reading.intents, covered, self.limits))

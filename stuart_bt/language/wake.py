@@ -200,22 +200,17 @@ class WakeFilter:
     def _at_end(self, utterance: str) -> WakeMatch | None:
         """The name as the last words, after a pause: the whole sentence before it was said to
         the robot ("Would you mind picking up the cup, Stuart?"). Its final "?" is kept."""
-        body = utterance[-_LOOK_AHEAD_CHARS:].rstrip(_STRIP)
-        words = list(_TOKEN.finditer(body))
-        for k in range(1, min(self._max_span, len(words) - 1) + 1):
-            first = words[-k].start()
-            before = body[:first].rstrip(" \t")
-            if not before or before[-1] not in _PAUSE:
-                continue
-            heard = "".join(m.group().lower() for m in words[-k:])
-            d = self.distance(heard)
-            if d <= self.tolerance:
-                start = len(utterance) - len(utterance[-_LOOK_AHEAD_CHARS:])
-                command = (utterance[:start] + before).lstrip(_STRIP).rstrip(_STRIP)
-                question = "?" if utterance.rstrip().endswith("?") else ""
-                heard_name = " ".join(m.group().lower() for m in words[-k:])
-                return WakeMatch(True, command + question, body[first:], heard_name, d)
-        return None
+        body = utterance.rstrip(_STRIP)
+        cut = max(body.rfind(c, max(0, len(body) - _LOOK_AHEAD_CHARS)) for c in _PAUSE)  # the last pause
+        words = [w.lower() for w in _TOKEN.findall(body, cut + 1)] if cut > 0 else []
+        if not words or len(words) > self._max_span or not _TOKEN.search(body, 0, cut):
+            return None
+        d = self.distance("".join(words))
+        if d > self.tolerance:
+            return None
+        question = "?" if utterance.rstrip().endswith("?") else ""
+        return WakeMatch(True, body[:cut].lstrip(_STRIP).rstrip(_STRIP) + question, body[cut + 1:].strip(),
+                         " ".join(words), d)
 
     def _at_start(self, utterance: str) -> WakeMatch:
         head = utterance[:_LOOK_AHEAD_CHARS]
