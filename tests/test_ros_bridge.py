@@ -159,7 +159,8 @@ def test_a_tree_behind_the_bridge_answers_a_question_holds_on_stop_and_finishes_
             and json.loads(m["data"]).get("reason", "").startswith(reason)
 
     tour = str(Path(__file__).resolve().parents[1] / "trees" / "lab_tour.yaml")
-    with BridgeProcess(tour, "--backend", "dry", "--speed", "20", "--log", str(log)) as bridge, RosClient() as client:
+    # Slow enough (~13 s of tour) that a loaded machine asks, hears the answer and says stop before the end.
+    with BridgeProcess(tour, "--backend", "dry", "--speed", "10", "--log", str(log)) as bridge, RosClient() as client:
         line = bridge.up()
         client.publish("audio_msg", "Hey Stuart, what happens in the drone cage?")
         answer = client.wait_for(lambda m: m.get("topic") == "/llm/response" and "netted cage" in m["data"])

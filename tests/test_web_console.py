@@ -87,7 +87,8 @@ def test_the_node_details_clear_when_a_new_mission_brings_a_new_tree(page):
 
 
 def test_serving_a_tree_the_console_talks_to_it_and_shows_the_answer_the_hold_and_the_going_on(page):
-    with Served("trees/lab_tour.yaml", "--backend", "dry", "--speed", "40", "--paused") as served:
+    # Slow enough that a loaded machine still says stop before the tour's ~130 simulated seconds end.
+    with Served("trees/lab_tour.yaml", "--backend", "dry", "--speed", "10", "--paused") as served:
         page.goto(served.url + "#console")
         page.wait_for_selector("#conn.ok")
         assert "drone cage" in page.get_attribute("#say-input", "placeholder")
