@@ -29,11 +29,12 @@ def joined(clips, gap_s: float = 1.0):
 
 @pytest.fixture(scope="session")
 def recogniser():
-    """One whisper recogniser for the whole session (the model loads in ~1 s)."""
+    """One recogniser of the default engine for the whole session (the models load in ~1 s)."""
     pytest.importorskip("faster_whisper", reason="the 'hearing' extra is not installed (make test installs it)")
+    pytest.importorskip("pocketsphinx", reason="the 'hearing' extra is not installed (make test installs it)")
     from stuart_bt.hearing.recognisers import make_recogniser
 
-    return make_recogniser("whisper")
+    return make_recogniser()
 
 
 @pytest.fixture(scope="session")

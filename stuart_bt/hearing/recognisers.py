@@ -25,8 +25,12 @@ if TYPE_CHECKING:
 
 WINDOW_S = 30.0  # whisper hears 30 s at a time
 
+# whisper with the command-only grammar engine as a second opinion (docs/hearing.md, "Measured here")
+DEFAULT_ENGINE = "whisper+grammar"
+
 RECOGNISERS: dict[str, str] = {
     "whisper": "stuart_bt.hearing.recognisers:WhisperRecogniser",
+    "whisper+grammar": "stuart_bt.hearing.second_opinion:SecondOpinion",
 }
 
 
@@ -92,11 +96,14 @@ class WhisperRecogniser:
         self._tokenizer: Any = None
         self._suppress: list[int] = []
         self._prompts: dict[str | None, list[int]] = {}  # prompt text -> decoder prompt tokens (one per vocabulary)
+        self._last: tuple[Any, int] | None = None  # the last utterance's encoded sound and its frames (for score)
+        self.last_score_s = 0.0  # how long the last :meth:`score` took
 
     def transcribe(self, samples: np.ndarray, vocabulary: Vocabulary | None = None) -> Transcript:
         started = time.perf_counter()
         audio = to_float(samples)
         prompt = vocabulary.prompt() if vocabulary else None
+        self._last = None
         if len(audio) > WINDOW_S * 16_000:  # longer than one window: faster-whisper's own loop, one reading
             text, logprob, no_speech = self._transcribe_long(audio, prompt)
             readings: list[tuple[str, float]] = [(text, logprob)] if text else []
@@ -122,12 +129,10 @@ class WhisperRecogniser:
                                         language="en")
             self._suppress = get_suppressed_tokens(self._tokenizer, [-1])
         tokenizer = self._tokenizer
-        tokens = self._prompts.get(prompt)
-        if tokens is None:  # the same vocabulary every utterance: tokenised once
-            previous = tokenizer.encode(" " + prompt.strip()) if prompt else []
-            tokens = self._prompts[prompt] = model.get_prompt(tokenizer, previous_tokens=previous,
-                                                              without_timestamps=True)
+        tokens = self._prompt_tokens(prompt)
         encoded = model.encode(pad_or_trim(model.feature_extractor(audio)))
+        features = model.feature_extractor
+        self._last = (encoded, min(len(audio) // features.hop_length, features.nb_max_frames))
         result = model.model.generate(
             encoded, [tokens], beam_size=self.beam_size, num_hypotheses=self.beam_size, length_penalty=1.0,
             max_length=model.max_length, return_scores=True, return_no_speech_prob=True, suppress_blank=True,
@@ -138,6 +143,34 @@ class WhisperRecogniser:
             if text and text not in readings:
                 readings[text] = score * len(ids) / (len(ids) + 1)  # as faster-whisper reports avg_logprob
         return sorted(readings.items(), key=lambda r: -r[1]), float(result.no_speech_prob)
+
+    def _prompt_tokens(self, prompt: str | None) -> list[int]:
+        tokens = self._prompts.get(prompt)
+        if tokens is None:  # the same vocabulary every utterance: tokenised once
+            previous = self._tokenizer.encode(" " + prompt.strip()) if prompt else []
+            tokens = self._prompts[prompt] = self._model.get_prompt(self._tokenizer, previous_tokens=previous,
+                                                                    without_timestamps=True)
+        return tokens
+
+    def score(self, texts: list[str], vocabulary: Vocabulary | None = None) -> list[float]:
+        """Whisper's average log probability per token of each of ``texts`` as what was said in
+        the utterance :meth:`transcribe` heard last (forced decoding, with the same prompt): how
+        well another engine's reading fits this sound, on the scale of whisper's own readings
+        (which also count the end of the text, so compare scores from here with each other).
+        Raises :class:`AudioError` when the last utterance was longer than one window."""
+        if self._last is None:
+            raise AudioError("nothing to score against: the last utterance was not heard in one window")
+        started = time.perf_counter()
+        encoded, frames = self._last
+        start = self._prompt_tokens(vocabulary.prompt() if vocabulary else None)
+        start = start[:-1] if start[-1] == self._tokenizer.no_timestamps else start  # align() puts it back
+        out = []
+        for text in texts:
+            ids = self._tokenizer.encode(" " + text.strip())
+            probs = self._model.model.align(encoded, start, [ids], frames)[0].text_token_probs if ids else []
+            out.append(sum(math.log(max(p, 1e-30)) for p in probs) / len(probs) if probs else -99.0)
+        self.last_score_s = time.perf_counter() - started
+        return out
 
     def _transcribe_long(self, audio: np.ndarray, prompt: str | None) -> tuple[str, float, float]:
         segments, _ = self._model.transcribe(
@@ -152,7 +185,7 @@ class WhisperRecogniser:
         return text, logprob, max(p.no_speech_prob for p in pieces)
 
 
-def make_recogniser(name: str = "whisper", **options: Any) -> Recogniser:
+def make_recogniser(name: str = DEFAULT_ENGINE, **options: Any) -> Recogniser:
     """The engine called ``name``, made with ``options`` (e.g. ``model_dir``, ``beam_size``)."""
     where = RECOGNISERS.get(name)
     if where is None:

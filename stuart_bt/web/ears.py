@@ -28,7 +28,7 @@ class BrowserEars:
     """The recogniser for one server's browsers (one at a time: two utterances at once would
     share the two cores and both be late)."""
 
-    def __init__(self, engine: str = "whisper") -> None:
+    def __init__(self, engine: str | None = None) -> None:
         self.engine = engine
         self._recogniser: Recogniser | None = None
         self._lock = threading.Lock()
@@ -37,7 +37,7 @@ class BrowserEars:
         if self._recogniser is None:
             from ..hearing.recognisers import make_recogniser
 
-            self._recogniser = make_recogniser(self.engine)
+            self._recogniser = make_recogniser(self.engine) if self.engine else make_recogniser()
         return self._recogniser
 
     def hear(self, robot: Any, samples: np.ndarray, ended_at: float) -> dict[str, Any]:

@@ -1,0 +1,143 @@
+"""Whisper with a command-only grammar engine as a second opinion (engine ``whisper+grammar``).
+
+Whisper hears anything, so it hears talk as talk, but it sometimes hears a command as something
+near it ("Hey Stuart, then turn around" as "hey Stuart, and enter around"; the wake phrase as
+"head to it"). The grammar engine (:mod:`.sphinx`) hears only commands, so it hears those right,
+and hears talk as some command too. Each covers the other's blind side this way:
+
+1. whisper hears the utterance; when one of its readings is a sentence of the command grammar
+   (:func:`.command_grammar.matcher`), the two engines could not disagree about its form and
+   whisper's transcript is used as it is;
+2. otherwise the grammar engine hears it, and its words are put into whisper's reading where
+   the two differ (:func:`splice`: whisper's spelling, case and punctuation are kept);
+3. whisper scores that corrected sentence against the same sound (forced decoding with the same
+   prompt, :meth:`~.recognisers.WhisperRecogniser.score`), and its own best reading too: the
+   difference puts the correction on the scale of whisper's readings;
+4. a correction that trails whisper's best by at most :data:`CORRECTION_MARGIN` is the reading
+   heard (first, whisper's readings after it, whisper's belief in its words as the confidence);
+   one that trails by more is kept as the last reading, where nothing acts on it.
+
+Which reading is acted on, and whether to ask, is then decided where it always is
+(:mod:`stuart_bt.language.readings`, the confidence floor), so a correction whisper itself finds
+much less likely than what it heard is never taken: talk, which the grammar engine turns into a
+command, is heard by whisper as talk, and the forced command scores far below it (measured:
+docs/hearing.md).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+from .command_grammar import as_digits, matcher, normalise, spoken
+from .pipeline import is_speech
+from .recognisers import WINDOW_S, Transcript, WhisperRecogniser
+from .sphinx import GrammarRecogniser
+from .vocabulary import Vocabulary
+
+if TYPE_CHECKING:
+    import re
+
+    import numpy as np
+
+# How much less likely per token (average log probability) than whisper's own best reading a
+# grammar engine's correction may be and still be the reading heard. Measured on the hearing
+# benchmark (docs/hearing.md): corrections of misheard commands trailed by 0.05-0.53 clean and
+# mostly under 1 at 10 dB SNR; the commands the grammar engine made of talk trailed by 3.3 or
+# more clean and 1.5 or more in noise. A correction that trails by more stays a reading, last.
+CORRECTION_MARGIN = 0.75
+
+
+class SecondOpinion:
+    """``whisper+grammar``: :class:`~.recognisers.WhisperRecogniser` with
+    :class:`~.sphinx.GrammarRecogniser` as a second opinion (module docstring)."""
+
+    name = "whisper+grammar"
+
+    def __init__(self, **whisper_options: Any) -> None:
+        self.whisper = WhisperRecogniser(**whisper_options)
+        self.grammar = GrammarRecogniser()
+        self._matchers: dict[Vocabulary, re.Pattern[str]] = {}
+
+    def transcribe(self, samples: np.ndarray, vocabulary: Vocabulary | None = None) -> Transcript:
+        heard = self.whisper.transcribe(samples, vocabulary)
+        if (vocabulary is None or not is_speech(heard) or heard.audio_s > WINDOW_S
+                or self._in_grammar(heard, vocabulary)):
+            return replace(heard, engine=self.name)
+        command = self.grammar.hear(samples, vocabulary)
+        corrected = splice(heard.text, command, vocabulary) if command else ""
+        readings = heard.readings()
+        if not corrected or corrected in (text for text, _ in readings):
+            return replace(heard, engine=self.name, seconds=heard.seconds + self.grammar.seconds)
+        ours, theirs = self.whisper.score([corrected, heard.text], vocabulary)
+        score = round(heard.avg_logprob + ours - theirs, 4)  # on the scale of whisper's own readings
+        seconds = heard.seconds + self.grammar.seconds + self.whisper.last_score_s
+        if heard.avg_logprob - score > CORRECTION_MARGIN:  # whisper finds it far less likely: kept, never first
+            ranked = sorted([*heard.alternatives, (corrected, score)], key=lambda r: -r[1])
+            return replace(heard, engine=self.name, alternatives=tuple(ranked), seconds=seconds)
+        confidence = math.exp(score) * (1.0 - heard.no_speech)  # whisper's belief in the corrected words
+        return replace(heard, text=corrected, avg_logprob=score, confidence=confidence, seconds=seconds,
+                       alternatives=((heard.text, round(heard.avg_logprob, 4)), *heard.alternatives),
+                       engine=self.name)
+
+    def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
+        pattern = self._matchers.get(vocabulary)
+        if pattern is None:
+            pattern = self._matchers[vocabulary] = matcher(vocabulary)
+        return any(pattern.fullmatch(normalise(text)) for text, _ in heard.readings())
+
+
+def splice(heard: str, command: list[str], vocabulary: Vocabulary) -> str:
+    """``heard`` (a general recogniser's text) with the words of ``command`` (the grammar
+    engine's tokens) where the two differ: words both heard keep ``heard``'s spelling, case and
+    punctuation, amounts are written in digits as in ``heard``, the robot's name and the lab's
+    words as the vocabulary writes them ("Stuart", "3D"), with a comma after the name (the wake
+    filter reads a bare name as a vocative only so); "hey Stuart, and enter around." with "hey
+    stuart and then turn around" -> "hey Stuart, and then turn around.". With ``heard`` empty,
+    the command as the grammar engine writes it."""
+    surface = heard.split()
+    keys = [" ".join(spoken(s)) for s in surface]
+    ours = as_digits(command)
+    out: list[str] = []
+    opcodes = difflib.SequenceMatcher(a=keys, b=ours, autojunk=False).get_opcodes()
+    for op, a0, a1, b0, b1 in opcodes:
+        if op == "equal":
+            out += surface[a0:a1]
+            continue
+        words = [_written(w, vocabulary) for w in ours[b0:b1]]
+        if words and a1 > a0:
+            words[-1] += _trailing(surface[a1 - 1])  # "it," -> "Stuart,"
+        elif words and out and a0 == len(surface) and (end := _trailing(out[-1])):
+            out[-1], words[-1] = out[-1][:-len(end)], words[-1] + end  # "... screwdriver now."
+        out += words
+    name = vocabulary.name.lower()
+    for n, word in enumerate(out):
+        if " ".join(spoken(word)) == name:
+            out[n] = word if _trailing(word) else word + ","  # "Stuart, go ...": the name is a vocative
+            break
+    text = " ".join(out)
+    if surface and surface[0][:1].isupper() and text:
+        text = text[0].upper() + text[1:]
+    return text
+
+
+def _trailing(token: str) -> str:
+    """The punctuation a written word ends with ("it," -> ",")."""
+    end = len(token)
+    while end > 0 and not token[end - 1].isalnum():
+        end -= 1
+    return token[end:]
+
+
+def _written(token: str, vocabulary: Vocabulary) -> str:
+    """A grammar token as the vocabulary writes it: the robot's name and words with capitals
+    inside or digits ("3D") as given, any other word in lower case."""
+    if token == vocabulary.name.lower():
+        return vocabulary.name
+    for phrase in (*vocabulary.places, *vocabulary.objects, *vocabulary.gestures, *vocabulary.extra):
+        for word in phrase.split():
+            if word.lower() == token and (word[1:] != word[1:].lower() or any(c.isdigit() for c in word)):
+                return word
+    return token
