@@ -111,7 +111,7 @@ class UnitreeEars(EarsBackend):
             t = heard.transcript
             deliver(heard_line(t.text, "robot_mic", round(t.confidence, 4), round(t.audio_s, 3),
                                round(heard.start_s, 3), round(t.no_speech, 4), latency_s=round(heard.latency_s, 3),
-                               readings=[list(r) for r in t.readings()]))
+                               readings=[list(r) for r in t.readings()], engine=t.engine))
 
     def _follow_asr(self, deliver: Deliver, stopped: threading.Event) -> None:
         self._deliver = deliver

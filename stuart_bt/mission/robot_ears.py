@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 FAMILY = "ears"
 MODES = {"robot": "mic", "robot:mic": "mic", "robot:asr": "asr"}  # --source -> the ears daemon's mode
-ENGINES = {"mic": "whisper", "asr": "robot"}
+ENGINES = {"mic": "whisper+grammar", "asr": "robot"}  # when the daemon does not name its recogniser
 ASR_AUDIO_S = 1.0  # the robot's recogniser says nothing of timing: judge its text by the last second
 
 
@@ -120,6 +120,6 @@ class RobotEars:
         began = ended - (audio_s if audio_s else ASR_AUDIO_S)
         return {"text": str(heard["text"]).strip(), "source": self.source, "audio_s": audio_s,
                 "confidence": heard.get("confidence"), "no_speech": heard.get("no_speech"),
-                "latency_s": latency_s, "engine": ENGINES[self.mode], "start_s": heard.get("start_s"),
+                "latency_s": latency_s, "engine": str(heard.get("engine") or ENGINES[self.mode]), "start_s": heard.get("start_s"),
                 "over_robot_speech": self.voice.spoke_over(began, ended),
                 **({"readings": heard["readings"]} if isinstance(heard.get("readings"), list) else {})}
