@@ -120,6 +120,7 @@ class RobotEars:
         began = ended - (audio_s if audio_s else ASR_AUDIO_S)
         return {"text": str(heard["text"]).strip(), "source": self.source, "audio_s": audio_s,
                 "confidence": heard.get("confidence"), "no_speech": heard.get("no_speech"),
-                "latency_s": latency_s, "engine": str(heard.get("engine") or ENGINES[self.mode]), "start_s": heard.get("start_s"),
+                "latency_s": latency_s, "engine": str(heard.get("engine") or ENGINES[self.mode]),
+                "start_s": heard.get("start_s"),
                 "over_robot_speech": self.voice.spoke_over(began, ended),
                 **({"readings": heard["readings"]} if isinstance(heard.get("readings"), list) else {})}
