@@ -196,6 +196,30 @@ def test_a_stopped_daemon_is_declared_hung_killed_and_restarted(make, recorder):
     assert states(recorder, "loco")[-3:] == ["hung", "starting", "ready"]
 
 
+def test_a_daemon_silent_while_the_world_stands_still_is_waited_for_and_hung_only_after(make, recorder):
+    world_still = threading.Event()
+    world_still.set()
+    sup = make(families=("loco",), heartbeat_timeout=0.5, stalled=world_still.is_set)
+    sup.start()
+    walk = sup.client("loco").request("navigate", LONG_WALK)
+    pid = sup.pid("loco")
+    os.kill(pid, signal.SIGSTOP)  # as a sim daemon blocked on a frozen world's socket
+    try:
+        held_until = time.monotonic() + 1.5  # three heartbeat timeouts
+        while time.monotonic() < held_until:
+            time.sleep(0.05)
+            sup.poll()
+        assert not walk.finished and sup.phase("loco") == "ready" and sup.pid("loco") == pid
+        world_still.clear()  # the world moves again; the daemon does not
+        moved_at = time.monotonic()
+        poll_at_20hz(sup, lambda: walk.finished)
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(pid, signal.SIGCONT)
+    assert walk.error_code == "daemon_hung" and walk.finished_at - moved_at >= 0.45  # a whole timeout after
+    assert states(recorder, "loco")[-1] in ("hung", "starting", "ready")
+
+
 def test_restarts_back_off_exponentially(make, recorder):
     sup = make(families=("gesture",), restart_backoff=(0.1, 5.0))
     sup.start()

@@ -38,6 +38,33 @@ def test_clock_file_round_trip(tmp_path):
     assert not path.exists()
 
 
+def test_a_world_is_stalled_only_when_its_time_stands_still_while_it_should_move(tmp_path):
+    from stuart_bt.sim.world.clock import STALL_S
+
+    path = tmp_path / "c.clock"
+    world_side = ClockFile(path, 0.004)  # this process plays the world: alive while the test runs
+    driver = SimClock(path, driver=True)
+    try:
+        world_side.publish(1.0)
+        driver.sleep_until(0.5)  # already there: the permit stays at 0, the world waits for the driver
+        assert not driver.world_stalled()
+        time.sleep(STALL_S * 1.5)
+        assert not driver.world_stalled(), "a world waiting for its driver's permit is not stalled"
+
+        driver.sleep_until(2.0, max_wall=0.01)  # the driver asks for more: the world should move now
+        assert not driver.world_stalled()  # not yet: a quarter of a second first
+        time.sleep(STALL_S * 1.5)
+        assert driver.world_stalled()
+        world_side.publish(1.1)  # it moved
+        assert not driver.world_stalled()
+        world_side.close(remove=False)  # the world stopped: time goes on at wall rate, nothing to wait on
+        time.sleep(STALL_S * 1.5)
+        assert not driver.world_stalled()
+    finally:
+        driver.close()
+        path.unlink(missing_ok=True)
+
+
 @pytest.fixture(scope="module")
 def world():
     with launch_world(robot=ROBOT, stderr=subprocess.DEVNULL) as w:

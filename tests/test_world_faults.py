@@ -9,6 +9,7 @@ even when it fails.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import signal
 import subprocess
@@ -166,10 +167,14 @@ def test_a_world_frozen_for_a_while_carries_on_when_it_resumes(run: Run):
     assert run.proc.poll() is None, "a frozen world is waited for, not given up on"
     os.kill(world, signal.SIGCONT)
     time.sleep(2.0)
-    assert run.proc.poll() is None and _alive(world)
+    assert run.proc.poll() is None, f"the run ended after its world resumed: {run.finish()}"
+    assert _alive(world)
     os.kill(run.proc.pid, signal.SIGTERM)
     code, err = run.finish()
     assert code == 143 and "Traceback" not in err
+    events = json.loads(run.report.read_text())["events"]
+    lost = [e["reason"] for e in events if e["kind"] == "daemon_state" and e["state"] in ("hung", "died")]
+    assert lost == [], "a daemon waiting on the frozen world was taken for hung"
 
 
 @pytest.mark.slow

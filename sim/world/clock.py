@@ -28,6 +28,7 @@ SIZE = 64
 _MAGIC, _TIME, _PERMIT, _DRIVER, _WORLD, _RATE, _STATE, _STOP_WALL = range(8)
 RUNNING, STOPPED = 1, 2
 LIVENESS_PERIOD = 0.5  # wall seconds between checks that the world (or the driver) still exists
+STALL_S = 0.25  # wall seconds a world's time may stand still, with the driver waiting on it, before it is stalled
 
 
 class _Slots:
@@ -158,6 +159,8 @@ class SimClock:
         self._closed = False
         self._world_gone_at: tuple[float, float] | None = None  # (sim time, wall time) when it vanished
         self._next_liveness = 0.0
+        # (sim time, monotonic time since when it has stood still while asked to move; nan: not asked)
+        self._still: tuple[float, float] = (math.nan, math.nan)
         if driver:
             current = int(self._q[_DRIVER])
             if current not in (0, os.getpid()) and _pid_alive(current):
@@ -235,6 +238,24 @@ class SimClock:
     @property
     def permit(self) -> float:
         return self._f[_PERMIT]
+
+    def world_stalled(self) -> bool:
+        """Whether the world stands still while it is expected to move: alive, its time below
+        the driver's permit (or running free at a measured pace) and unchanged for
+        :data:`STALL_S` wall seconds, as when it is frozen by a signal, stopped in a debugger or
+        starved by a loaded machine. A world waiting for the driver (time at the permit) or
+        paused (no pace) is not stalled. Daemons wait on such a world, so their silence then
+        is no sign of a hang (:class:`stuart_bt.daemon.supervisor.Supervisor`, ``stalled``)."""
+        if not self._check_alive():
+            return False
+        now, wall = self._f[_TIME], time.monotonic()
+        expected = now < self._f[_PERMIT] if self._q[_DRIVER] else self._f[_RATE] > 0
+        if not expected or now != self._still[0]:  # moving, or not asked to: the count starts again
+            self._still = (now, wall if expected else math.nan)
+            return False
+        if self._still[1] != self._still[1]:  # asked to move from now on
+            self._still = (now, wall)
+        return wall - self._still[1] >= STALL_S
 
     def _check_alive(self) -> bool:
         if not self.alive:

@@ -19,6 +19,7 @@ from __future__ import annotations
 import atexit
 import contextlib
 import json
+import math
 import os
 import select
 import signal
@@ -26,7 +27,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -118,12 +119,16 @@ class Supervisor:
         watchdog: float = 0.0,
         programs: Mapping[str, Sequence[str]] | None = None,
         run_dir: str | Path | None = None,
+        stalled: Callable[[], bool] | None = None,
     ) -> None:
         """``programs`` replaces ``python -m stuart_bt.skills.<family>`` for some families (tests,
         out-of-tree daemons); ``run_dir`` receives ``<family>.stderr.log`` (default: a temp dir).
         ``watchdog`` (wall seconds, 0: off): each daemon stops running motion when :meth:`poll`
         has sent it nothing for that long (poll sends a keep-alive every quarter of it), so a
-        frozen framework leaves a stopped robot; poll at the tick rate, as the executor does."""
+        frozen framework leaves a stopped robot; poll at the tick rate, as the executor does.
+        ``stalled`` says whether something every daemon may be waiting on stands still (the
+        simulator's world, frozen or starved): time while it does, and ``heartbeat_timeout``
+        after, does not count towards a hang, since restarting a daemon cannot help then."""
         self.backend = backend
         self.clock = clock
         self.events = events
@@ -142,6 +147,8 @@ class Supervisor:
             f: _Daemon(f, DaemonClient(f, events), self.run_dir / f"{f}.stderr.log") for f in families
         }
         self._outputs = _Outputs()
+        self._stalled = stalled
+        self._stood_still_at = -math.inf  # wall time the thing daemons wait on was last seen standing still
         self._zombies: list[subprocess.Popen[bytes]] = []  # killed, not yet reaped
         self._started = False
         self._closed = False
@@ -370,24 +377,32 @@ class Supervisor:
         silent, or not answering its commands; None while it is healthy."""
         if d.client.eof or d.process.poll() is not None:
             return "daemon_died", "died", f"{d.family} daemon {self._exit_reason(d)}"
+        if d.client.faulty and d.phase != "starting":
+            return "daemon_faulty", "faulty", d.client.faulty
+        waited_from = self._last_stall(now)  # silence while the world stood still is not counted
         if d.phase == "starting":
-            if now - d.spawned_at > self.handshake_timeout:
+            if now - max(d.spawned_at, waited_from) > self.handshake_timeout:
                 return "daemon_hung", "hung", f"{d.family} daemon sent no READY within {self.handshake_timeout} s"
             return None
-        if d.client.faulty:
-            return "daemon_faulty", "faulty", d.client.faulty
-        if now - (d.client.last_heartbeat or d.ready_at) > self.heartbeat_timeout:
+        if now - max(d.client.last_heartbeat or d.ready_at, waited_from) > self.heartbeat_timeout:
             return "daemon_hung", "hung", f"{d.family} daemon sent no heartbeat for {self.heartbeat_timeout} s"
-        unanswered = self._unanswered(d, now)
+        unanswered = self._unanswered(d, now, waited_from)
         return ("daemon_hung", "hung", unanswered) if unanswered is not None else None
 
-    def _unanswered(self, d: _Daemon, now: float) -> str | None:
+    def _last_stall(self, now: float) -> float:
+        """The wall time the thing the daemons wait on (``stalled``) was last seen standing
+        still; ``-inf`` when it never did, or nothing was given to ask."""
+        if self._stalled is not None and self._stalled():
+            self._stood_still_at = now
+        return self._stood_still_at
+
+    def _unanswered(self, d: _Daemon, now: float, waited_from: float = -math.inf) -> str | None:
         """The rule for a daemon that heartbeats but does not take its commands: every request
         gets its first reply (accepted, done or error) within ``heartbeat_timeout`` of being sent
         (or of READY, for one sent while the daemon started). Commands validate and start inside
         the loop that heartbeats, so a healthy daemon never needs longer."""
         oldest = d.client.oldest_unanswered()
-        if oldest is None or now - max(oldest.sent_at, d.ready_at) <= self.heartbeat_timeout:
+        if oldest is None or now - max(oldest.sent_at, d.ready_at, waited_from) <= self.heartbeat_timeout:
             return None
         return (f"{d.family} daemon did not answer {oldest.id} ({oldest.cmd}) within {self.heartbeat_timeout} s "
                 f"though it still heartbeats")

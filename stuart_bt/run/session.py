@@ -116,6 +116,7 @@ class Session:
                 self.options.backend, self.clock, self.events, families=families, options=options,
                 handshake_timeout=self.options.handshake_timeout, heartbeat_timeout=self.options.heartbeat_timeout,
                 watchdog=self.options.watchdog, run_dir=self.run_dir,
+                stalled=getattr(self.clock, "world_stalled", None),  # a frozen world is not a hung daemon
             )
             self._start_daemons()
         self.executor = self.executor_for(self.spec)
