@@ -4,7 +4,9 @@ Measured: sequential ``ping`` requests to the dry ``tts`` daemon through
 ``Supervisor.client("tts").request`` + ``Supervisor.wait`` (:mod:`bench.daemon_peer`).
 Anchors, measured in the same run:
 
-1. the stdlib floor: a JSON-lines echo child on a pipe (:mod:`bench.pipe_echo`);
+1. the stdlib floor: a JSON-lines echo child on a pipe (:mod:`bench.pipe_echo`), and the same
+   with orjson, the codec stuart_bt's protocol uses, at both ends (information: what is left
+   above it is stuart_bt's own machinery);
 2. rclpy: a std_msgs/String ping/pong between two nodes with SingleThreadedExecutors, once
    with both nodes in one process and once with the pong node in a second process
    (:mod:`bench.ros_pingpong`, in child processes with the ROS environment).
@@ -61,7 +63,8 @@ def start_peers() -> tuple[dict[str, Peer], dict[str, str]]:
                 missing[mode] = str(e)
         peers["stuart_bt"] = DaemonPeer()
         peers["stdlib"] = EchoPeer()
-        for name in ("stuart_bt", "stdlib"):
+        peers["orjson"] = EchoPeer("orjson")
+        for name in ("stuart_bt", "stdlib", "orjson"):
             peers[name].batch(WARMUP)  # the rclpy peers warm up before they report READY
     except BaseException:
         close_peers(peers)
@@ -117,6 +120,11 @@ def run(quick: bool = False) -> list[Result]:
                paired_ratio=median_ratio(batches, "stuart_bt", "stdlib")),
         Result(f"{NAME}.stuart_bt.p99", p99, "us", Anchor("stdlib JSON-lines pipe echo, p99", plain_p99),
                note=f"{where}; no goal of its own; ratio of the pooled p99s"),
+        Result(f"{NAME}.stuart_bt.median_vs_orjson_pipe", median, "us",
+               Anchor("the same pipe echo with orjson at both ends, median", _us(samples["orjson"])[0]),
+               note=f"{where}; information, no goal: the codec stuart_bt's protocol uses, so the ratio is "
+                    "the price of its own machinery alone",
+               paired_ratio=median_ratio(batches, "stuart_bt", "orjson")),
     ]
     goal = Goal(GOAL_ROS_FRACTION)
     for mode, label in ROS_MODES.items():

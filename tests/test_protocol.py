@@ -371,3 +371,60 @@ def test_every_message_a_daemon_builds_passes_the_schema():
                     p.error(None, "bad_request", "x"), p.error("r1", "stopped", "x", 7, {"pose": {"x": 0, "y": 0}}),
                     p.heartbeat(1, 0.5, {"pose": {"x": 0.0, "y": 0.0, "yaw": 0.0}}), p.log("info", "hi")):
         assert p.check_daemon_message(p.decode(p.encode(message))) == message
+
+
+def _stdlib_verdict(line: bytes):
+    try:
+        return ("read", p._decode_stdlib(line)[0])
+    except p.ProtocolError as e:
+        return ("refused", e.reason, e.request_id)
+
+
+def _same_values(a, b) -> bool:
+    """Equal, and of the same types all the way down (1 and 1.0 are equal but not the same)."""
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, dict):
+        return list(a) == list(b) and all(_same_values(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return len(a) == len(b) and all(_same_values(x, y) for x, y in zip(a, b, strict=True))
+    return a == b or (a != a and b != b)
+
+
+NUMBER_TEXT = st.one_of(st.integers().map(str), st.floats(allow_nan=False).map(repr),
+                        st.from_regex(r"-?[0-9]{1,30}(\.[0-9]{1,30})?([eE][+-]?[0-9]{1,4})?", fullmatch=True))
+
+
+@FUZZ
+@given(st.one_of(st.binary(max_size=200),
+                 JSON_VALUES.map(lambda v: json.dumps({"id": "r1", "v": v}, allow_nan=True).encode()),
+                 NUMBER_TEXT.map(lambda n: f'{{"id":"r1","n":{n}}}'.encode()),
+                 st.text(alphabet=st.sampled_from('{}[]",:0123456789.eE-+ abcNaInfity\\ud8\xe9'), max_size=120)
+                 .map(lambda t: t.encode("utf-8", "surrogatepass"))))
+def test_the_fast_reader_reads_every_line_as_the_stdlib_reader_does(line):
+    """orjson reads the usual line; what it reads must be what the stdlib path reads, to the
+    type of every number, and what it refuses must be refused with the stdlib path's reason."""
+    fast = _verdict(lambda: p.decode(line))
+    slow = _stdlib_verdict(line)
+    assert fast[0] == slow[0] and (fast[1:] == slow[1:] if fast[0] == "refused" else _same_values(fast[1], slow[1]))
+
+
+@pytest.mark.parametrize("message", [
+    {"type": "done", "id": "r1", "result": {"big": 2 ** 70, "small": -(2 ** 64)}},  # past 64 bits
+    {"type": "done", "id": "r1", "result": {1: "a", None: "b", 2.5: "c"}},  # keys the stdlib writes as strings
+    {"type": "done", "id": "r1", "result": {"nan": float("nan"), "inf": float("-inf")}},  # null, as to_json
+    {"type": "log", "level": "info", "message": "line one\nline two \u2028 \x00 é"},
+])
+def test_encode_writes_what_the_stdlib_encoder_writes_as_one_line(message):
+    line = p.encode(message)
+    assert line.endswith(b"\n") and line.count(b"\n") == 1
+    assert json.loads(line) == json.loads(p._TO_LINE(message))
+
+
+def test_encode_refuses_what_the_stdlib_encoder_refuses():
+    circular: dict = {}
+    circular["self"] = circular
+    with pytest.raises(ValueError):
+        p.encode({"type": "done", "id": "r1", "result": circular})
+    with pytest.raises(TypeError):
+        p.encode({"type": "done", "id": "r1", "result": {"x": object()}})

@@ -12,6 +12,8 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
+import orjson
+
 from ..core.errors import StuartError
 from ..core.jsonfile import compact_encoder, is_finite_number, nesting_depth
 
@@ -87,10 +89,17 @@ _TO_LINE = compact_encoder(ensure_ascii=False)  # made once: json.dumps builds a
 def encode(message: dict[str, Any]) -> bytes:
     """One message as one line of UTF-8 JSON, newline included.
 
-    ``json.dumps`` escapes control characters inside strings, so the only raw newline in the
-    output is the terminating one.
+    Both encoders escape control characters inside strings, so the only raw newline in the
+    output is the terminating one. orjson writes the usual message (plain dicts, lists, strings,
+    numbers) several times faster than the stdlib; whatever it will not write (an integer past
+    64 bits, a key that is not a string, a subclass such as a numpy float, a lone surrogate, a
+    circular structure) goes to the stdlib encoder, whose output or refusal is the verdict. Both
+    write a NaN or an infinity as ``null`` (:func:`~stuart_bt.core.jsonfile.to_json`).
     """
-    return (_TO_LINE(message) + "\n").encode()
+    try:
+        return _FAST_LINE(message, option=_FAST_OPTIONS)
+    except TypeError:
+        return (_TO_LINE(message) + "\n").encode()
 
 
 def decode(line: bytes | str) -> dict[str, Any]:
@@ -110,15 +119,41 @@ def decode_daemon_message(line: bytes | str) -> dict[str, Any]:
     could hold such a key (every line of every daemon passes here, a pose is in few of them)."""
     message, text = _decode(line)
     # a key can only be one of POSE_KEYS if the text spells it, or spells anything with \u escapes
-    return _check_daemon_message(message, poses="pose" in text or "\\u" in text)
+    poses = (b"pose" in text or b"\\u" in text) if isinstance(text, bytes) else ("pose" in text or "\\u" in text)
+    return _check_daemon_message(message, poses=poses)
 
 
-def _decode(line: bytes | str) -> tuple[dict[str, Any], str]:
+def _decode(line: bytes | str) -> tuple[dict[str, Any], bytes | str]:
     """The message and the text it was parsed from. Every line of every daemon and every
     request passes here, so the checks are written inline, and the walks over every value run
     only when the text shows they may find something."""
     if len(line) > MAX_LINE + 1:
         raise ProtocolError(f"line of {len(line)} bytes is longer than the {MAX_LINE}-byte limit")
+    if type(line) is bytes and _fast_path_gives_the_same(line):
+        try:
+            message = _FAST_PARSE(line)
+        except orjson.JSONDecodeError:
+            pass  # refused: the stdlib path below gives the verdict, in its own words
+        else:
+            if type(message) is dict:
+                return message, line
+    return _decode_stdlib(line)
+
+
+def _fast_path_gives_the_same(line: bytes) -> bool:
+    """Whether orjson's reading of ``line`` is the stdlib reader's, checks included: orjson
+    refuses every line the checks below refuse (invalid UTF-8, lone surrogates, NaN, Infinity,
+    numbers that overflow a float) and reads the rest to the same values, except two things
+    this rules out: nesting past :data:`MAX_DEPTH` (it allows 1024 levels) and integers of 19
+    digits or more (past 64 bits it reads them as floats). Fuzzed against the stdlib path in
+    tests/test_protocol.py."""
+    return line.count(b"[") + line.count(b"{") <= MAX_DEPTH and _LONG_INTEGER.search(line) is None
+
+
+def _decode_stdlib(line: bytes | str) -> tuple[dict[str, Any], str]:
+    """:func:`_decode` with the stdlib parser and the protocol's own checks: every line orjson
+    refuses, or may read differently, comes here, so the reason for a refusal is always this
+    path's."""
     if isinstance(line, str):
         text, strings = line, True  # a str may hold lone surrogates: check every string
     else:
@@ -158,6 +193,13 @@ def _refuse_constant(name: str) -> _NonFinite:
 # Built once: json.loads given a hook builds a new decoder on every call, which costs more than
 # parsing a short line.
 _PARSE = json.JSONDecoder(parse_constant=_refuse_constant).decode
+_FAST_PARSE = orjson.loads
+_FAST_LINE = orjson.dumps
+# orjson's own handling of subclasses, dataclasses and dates differs from the stdlib's: those go
+# to the stdlib encoder as before; a newline is appended in C
+_FAST_OPTIONS = (orjson.OPT_APPEND_NEWLINE | orjson.OPT_PASSTHROUGH_SUBCLASS | orjson.OPT_PASSTHROUGH_DATACLASS
+                 | orjson.OPT_PASSTHROUGH_DATETIME)
+_LONG_INTEGER = re.compile(rb"[0-9]{19}")
 # A float literal that may overflow to infinity has a positive exponent of three digits or more,
 # or a mantissa of more than 200 digits (under 10**200 times at most 10**99 is still finite).
 # Digits inside strings may match too; that only costs the walk that then finds nothing. Two
