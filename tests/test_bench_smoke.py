@@ -28,6 +28,7 @@ EXPECTED = [
       for kind in ("flat", "nested", "flip") for size in SIZES),
     "roundtrip.stuart_bt.median",
     "roundtrip.stuart_bt.p99",
+    "roundtrip.stuart_bt.median_vs_orjson_pipe",
     "roundtrip.stuart_bt.median_vs_rclpy_same_process",
     "roundtrip.stuart_bt.median_vs_rclpy_two_process",
     *(f"ik.{solver}.{figure}" for solver in ("pin", "placo")
