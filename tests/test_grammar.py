@@ -495,3 +495,74 @@ def test_intent_json_round_trip() -> None:
 def test_another_before_a_unit_is_one_more_of_it(text, x):
     [move] = parse_command(text)
     assert move.action == "move_relative" and move.x == pytest.approx(x)
+
+
+# -- what the sixth and seventh held-out batches taught (docs/voice.md) -------------------------------
+@pytest.mark.parametrize("text", ["you're late so stop", "it is late so just stop for a second",
+                                  "I wanted you to find the cup, but there's a kid in the way, so stop for a moment",
+                                  "you keep walking into the shot, so freeze a sec"])
+def test_a_stop_said_after_talk_is_heard_however_long_it_is_meant_to_last(text: str) -> None:
+    assert shape(text) == [("stop", "")]
+
+
+@pytest.mark.parametrize("text", ["the bus didn't stop", "I told him to stop", "it's late so stop the music"])
+def test_talk_about_stopping_is_no_stop(text: str) -> None:
+    assert shape(text) == []
+
+
+@pytest.mark.parametrize("text", ["no freeze", "no no no halt, there's a kid behind you", "no stop"])
+def test_no_before_a_stop_is_said_over_it_not_a_negation(text: str) -> None:
+    assert shape(text) == [("stop", "")]
+
+
+@pytest.mark.parametrize("text", ["turn left never mind", "go to the kitchen, actually, never mind",
+                                  "go to the kitchen just kidding", "pick up the bottle nevermind"])
+def test_never_mind_after_a_request_takes_it_back(text: str) -> None:
+    assert shape(text) == []
+
+
+def test_never_mind_alone_is_a_stop() -> None:
+    assert shape("never mind") == [("stop", "")]
+
+
+@pytest.mark.parametrize("text, want", [
+    ("go to the, um, bathroom", [("navigate_to_marker", "bathroom")]),
+    ("walk towards, er, the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("turn left oh never mind", []),
+    ("go to the kitchen oh and wave", [("navigate_to_marker", "kitchen"), ("gesture", "wave")]),
+])
+def test_a_hesitation_inside_a_phrase_or_an_exclamation_breaking_in_is_read_as_said(text: str, want) -> None:
+    assert shape(text) == want
+
+
+@pytest.mark.parametrize("text", ["do you think you could go to the kitchen", "do you reckon you can go to the kitchen",
+                                  "think you could go to the kitchen?", "like could you go to the kitchen"])
+def test_a_request_put_as_a_question_about_what_the_robot_can_do_is_a_command(text: str) -> None:
+    assert shape(text) == [("navigate_to_marker", "kitchen")]
+
+
+@pytest.mark.parametrize("text", ["do you think I could go to the kitchen", "do you think the kitchen is clean"])
+def test_a_question_about_an_opinion_stays_a_question(text: str) -> None:
+    assert shape(text) == []
+
+
+def test_go_on_over_to_a_place_is_going_there() -> None:
+    assert shape("go on over to the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("go on ahead into the kitchen") == [("navigate_to_marker", "kitchen")]
+
+
+def test_a_light_verb_after_a_place_starts_the_next_command() -> None:
+    assert shape("when you reach the kitchen do a high five") == [("navigate_to_marker", "kitchen"),
+                                                                  ("gesture", "high five")]
+
+
+def test_a_hedge_after_a_command_is_not_a_word_left_over() -> None:
+    assert shape("find the screwdriver you know") == [("find", "screwdriver")]
+
+
+@pytest.mark.parametrize("text, yaw", [
+    ("turn around to the left", PI), ("spin around to the right", -PI), ("turn around twice", 2 * PI),
+    ("spin around three times to the left", 6 * PI), ("turn around", PI),
+])
+def test_around_says_how_far_and_the_side_which_way(text: str, yaw: float) -> None:
+    assert one(text).yaw == pytest.approx(yaw)

@@ -159,6 +159,20 @@ def test_a_bare_name_with_no_pause_before_a_sentence_about_the_robot_does_not_wa
     assert not got.wake and not got.intents, got
 
 
+@pytest.mark.parametrize("utterance", ["stuart you're late so just stop", "stuart is in the way so stop",
+                                       "stuart no no freeze there's a kid behind you"])
+def test_a_bare_name_with_no_pause_wakes_for_a_stop_said_anywhere_after_it(utterance):
+    got = Parser().parse(utterance)
+    assert got.wake and [i.action for i in got.intents] == ["stop"], got
+
+
+@pytest.mark.parametrize("utterance", ["stuart stuart give me a high five", "Stuart, Stuart, wave",
+                                       "hey stuart stuart wave"])
+def test_a_name_said_twice_is_the_name_once(utterance):
+    got = Parser().parse(utterance)
+    assert got.wake and [i.action for i in got.intents] == ["gesture"], got
+
+
 @pytest.mark.parametrize(("utterance", "command"), [("Would you mind picking up the cup, Stuart?",
                                                      "Would you mind picking up the cup?"),
                                                     ("Go to the kitchen, Stuart.", "Go to the kitchen")])

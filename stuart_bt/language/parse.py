@@ -32,7 +32,7 @@ from .doubt import Doubt, Limits, doubts
 from .grammar import Coverage, Defaults, Grammar, coverage
 from .grammar.driver import TALK, Reading
 from .grammar.lexicon import AUX, MODALS, WH
-from .intents import TaskIntent
+from .intents import STOP, TaskIntent
 from .wake import GREETINGS, WakeFilter, WakeMatch
 
 
@@ -78,8 +78,9 @@ class Parser:
         """The wake filter's verdict, with one judgement only the grammar can make: the name
         alone with no pause after it ("stuart go to the kitchen", as a recogniser writes it)
         wakes when what follows is said to the robot: a command that does not open as talk, or a
-        question to it ("stuart what can you do"), never a sentence about it ("stuart went to
-        the kitchen", "stuart is in the kitchen")."""
+        question to it ("stuart what can you do"), or a stop anywhere in it ("stuart you're late
+        so just stop": stopping is always safe), never a sentence about it ("stuart went to the
+        kitchen", "stuart is in the kitchen")."""
         wake = self.wake_filter.match(utterance)
         if wake.unpaused and self._said_to_the_robot(wake.command):
             wake.woke = True
@@ -88,8 +89,8 @@ class Parser:
     def _said_to_the_robot(self, rest: str) -> bool:
         reading = self.grammar.read(rest)
         self._kept = (rest, reading)
-        if reading.intents:  # a command, unless its first word was read as talk
-            return reading.marks[:1] != bytes((TALK,))
+        if reading.intents:  # a command, unless its first word was read as talk; a stop always
+            return reading.marks[:1] != bytes((TALK,)) or any(i.action == STOP for i in reading.intents)
         first = reading.tokens[:2]  # or a question put to it: "stuart what ...", "stuart can you ..."
         return bool(first) and (first[0] in WH or (len(first) == 2 and first[1] == "you" and (
             first[0] in MODALS or first[0] in AUX or first[0] in ("do", "have"))))

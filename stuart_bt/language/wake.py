@@ -241,6 +241,8 @@ class WakeFilter:
         if span is None:
             return WakeMatch(False)
         k, dist = span
+        while i + k < len(toks) and (again := self._name_at(toks, i + k)) is not None:
+            k += again[0]  # "stuart stuart give me a high five": a name said twice is said once
         if offsets is None:
             offsets, pos = [], 0
             for t in toks[:i + k]:  # where each word starts in the utterance

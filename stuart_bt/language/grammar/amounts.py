@@ -206,6 +206,11 @@ def _turn_result(s: ParseState, r: _Turn) -> Result:
     d = s.defaults
     if r.angle is not None:
         return [(TURN, "", 0.0, 0.0, (r.sign or 1) * r.angle * r.times)], r.j
+    if r.around and (r.sign or r.times > 1):
+        # "around" says how far, the side which way: "turn around to the left" is half a turn
+        # leftwards; said more than once, "spin around" is whole spins, "turn around" half turns
+        per = 2 * math.pi if r.verb == "spin" and r.times > 1 else math.pi
+        return [(TURN, "", 0.0, 0.0, (r.sign or 1) * per * r.times)], r.j
     if r.sign:
         deg = d.vague_turn_deg if r.vague else d.turn_deg
         return [(TURN, "", 0.0, 0.0, r.sign * math.radians(deg) * r.times)], r.j

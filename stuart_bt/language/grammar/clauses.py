@@ -115,8 +115,9 @@ def _polite(s: ParseState, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS:
-            break  # "like" is a filler only before a verb: "could you like go to the kitchen"; "help me find"
+        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS and not (
+                p == ("like",) and s.at(i + 1) in MODALS and s.at(i + 2) == "you"):
+            break  # "like" is a filler only before a verb ("could you like go there") or a request ("like could you")
         i += len(p)
     return i
 
@@ -182,6 +183,16 @@ def opens_conversation(s: ParseState, i: int) -> bool:
     return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
 
 
+def _asks_a_wish(s: ParseState, i: int) -> bool:
+    """A question about wishes, plans or opinions at ``i`` ("do you think the kitchen is
+    clean?"), unless it opens a longer polite request ("do you think you could go ...")."""
+    wish = s.phrase_at(i, WISH_QUESTIONS_BY_FIRST)
+    if wish is None:
+        return False
+    polite = s.phrase_at(i, POLITE_BY_FIRST) if s.toks[i] in POLITE_BY_FIRST else None
+    return polite is None or len(polite) <= len(wish)
+
+
 def read_clause(s: ParseState, i: int) -> Result:
     """One clause at ``i`` (after a connector): polite openers, then a verb phrase, or one of the
     verbless forms (stop phrases, "about face", a gesture name, an elliptic direction or noun
@@ -191,7 +202,7 @@ def read_clause(s: ParseState, i: int) -> Result:
         return got
     if toks[i] in SPEAKER_OPENERS_BY_FIRST and (got := _reciprocal(s, i)) is not None:
         return got
-    if toks[i] in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
+    if toks[i] in WISH_QUESTIONS_BY_FIRST and _asks_a_wish(s, i):
         return None
     i = _polite(s, i)
     if i >= n:

@@ -50,8 +50,10 @@ from .lexicon import (
     MODALS,
     NP_STOP,
     PAST,
+    PAUSE_SPANS_BY_FIRST,
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
+    STOP_PHRASES_BY_FIRST,
     SUBORDINATORS,
     TIME_OPENERS,
 )
@@ -164,6 +166,11 @@ class _CommandReader:
             self._mark(self.i, self.i + 1, USED)  # "actually, scratch that": the word before a correction
             self.i += 1
             return True
+        if t == "no" and s.at(self.i + 1) in STOP_PHRASES_BY_FIRST and (
+                s.phrase_at(self.i + 1, STOP_PHRASES_BY_FIRST) is not None):
+            self._mark(self.i, self.i + 1, USED)  # "no no no freeze": said before a stop, not a negation
+            self.i += 1
+            return True
         if t in LIST_LABELS and word_value(s.at(self.i + 1)) is not None and s.at(self.i + 2) == ",":
             self._mark(self.i, self.i + 3, USED)  # "item two, locate the cup": a label, not a second place
             self.i += 3
@@ -219,10 +226,8 @@ class _CommandReader:
         if not self.dead:
             return False
         s, i, t = self.s, self.i, self.toks[self.i]
-        k = i + 1 if t in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
         before = self.toks[i - 1]
-        if (before == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you"))) or (
-                before in (",", "but", "so") and s.at(k) in ("stop", "halt", "freeze") and may_end(s, k + 1)):
+        if (before == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you"))) or _stop_said_at(s, i):
             self.dead = False  # "I know I told you to go there, but stop right now": a stop always wins
             return False
         self.marks[i] = TALK
@@ -345,8 +350,8 @@ class _CommandReader:
         if opens and not topic:
             self.dead = True
         self.i += 1
-        while self.i < s.n and toks[self.i] not in BOUNDARY:
-            self.i += 1
+        while self.i < s.n and toks[self.i] not in BOUNDARY and not (self.dead and _stop_said_at(s, self.i)):
+            self.i += 1  # "you're late so just stop": the talk ends where a stop is said
         if self.dead:
             self._mark(start, self.i, TALK)
         elif topic:  # "the kitchen, go there": what "there" will mean
@@ -391,6 +396,25 @@ class _CommandReader:
 # "a bottle of water", "the kitchen by the door"), when they follow a target
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
+
+def _stop_said_at(s: ParseState, i: int) -> bool:
+    """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop verb whose
+    clause ends after it, after a pause, "but" or "so", perhaps with one softening word between
+    ("..., but stop right now", "you're late so just stop", "..., actually freeze a moment")."""
+    if i == 0:
+        return False
+    k = i + 1 if s.toks[i] in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
+    return s.at(k) in ("stop", "halt", "freeze") and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
+
+
+def _stop_ends(s: ParseState, j: int) -> bool:
+    """Whether a stop verb's clause ends at ``j``, perhaps after saying how long ("..., so stop
+    for a second", "..., but freeze a moment"): then it is a stop, not a word in the talk."""
+    if s.at(j) == "for":
+        j += 1
+    span = s.phrase_at(j, PAUSE_SPANS_BY_FIRST)
+    return may_end(s, j + len(span) if span else j)
+
 
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
 _BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then"})

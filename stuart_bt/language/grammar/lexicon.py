@@ -30,6 +30,14 @@ SPLITS: dict[str, tuple[str, ...]] = {
 
 HARD_STOPS = frozenset({".", ";", "!", "?"})
 
+# words no phrase ends with: a comma after one is a speaker's hesitation ("go to the, um,
+# bathroom", "walk towards, er, the door"), not a pause between two clauses
+HESITANT = frozenset({"the", "a", "an", "your", "my", "our", "to", "into", "onto", "towards", "toward"})
+
+# exclamations that break into a sentence ("turn left oh never mind", "go to the kitchen oops no
+# the bathroom"): a pause is heard before them even where a recogniser wrote none
+INTERRUPTING = frozenset({"oh", "ooh", "oops", "whoops", "whoa", "woah"})
+
 COPULA = frozenset({"is", "are", "was", "were", "isnt", "arent", "wasnt", "werent", "means"})
 
 SUBORDINATORS = frozenset({"when", "once", "after", "whenever", "if"})
@@ -65,9 +73,10 @@ NP_STOP = BOUNDARY | frozenset({
     "straight", "right", "yourself", "which", "who", "where", "whose", "thats", "will", "would", "can",
     "could", "since", "when", "once", "like", "shall", "yeah", "alright", "okay",
     "later", "soon", "today", "tonight", "tomorrow", "afterwards", "sometime",  # when, not what
-    "no", "sorry", "oops", "i",  # a correction or a new sentence follows ("go to the kitchen i said")
+    "no", "sorry", "oops", "i", "never",  # a correction or a new sentence follows ("go to the kitchen i said")
     "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
     "you",  # a new clause: "... the kitchen you need a map"
+    "do",  # a new clause: "when you reach the corner do a high five"
     "together", "alone",
 })
 
@@ -101,6 +110,9 @@ SIGN_OFFS: tuple[tuple[str, ...], ...] = (
     ("thank", "you"), ("thanks",), ("cheers",), ("much", "appreciated"), ("if", "you", "dont", "mind"),
     ("when", "you", "can"), ("when", "youre", "ready"), ("in", "your", "own", "time"), ("no", "rush"),
     ("take", "your", "time"), ("good", "lad"), ("good", "robot"), ("atta", "boy"), ("you", "got", "this"),
+    # hedges that close a sentence without adding to it
+    ("you", "know"), ("know", "what", "i", "mean"),
+    ("you", "know", "what", "i", "mean"), ("if", "you", "know", "what", "i", "mean"), ("yeah",), ("innit",),
 )
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
@@ -177,6 +189,12 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
     ("please", "to"), ("mind",), ("you", "mind"),
+} | {  # a request put as a question about what the robot thinks it can do: "do you think you could ..."
+    (*opener, verb, *that, "you", modal)
+    for opener in (("do", "you"), ("d", "you"), ("dyou",), ())
+    for verb in ("think", "reckon", "suppose", "guess")
+    for that in ((), ("that",))
+    for modal in ("could", "can", "would", "might")
 }, key=lambda p: (-len(p), p)))
 
 POLITE_BY_FIRST = by_first(POLITE)
@@ -440,6 +458,16 @@ CORRECTIONS_BY_FIRST = by_first(sorted(CORRECTIONS, key=lambda c: (-len(c), c)))
 
 # stop verbs that stop only with one of these words next ("hold on", "cut it out", "never mind";
 # "" is the end of the text); the rest stop whatever follows
+# how long a stop is meant to last, said after it ("stop for a second", "freeze a moment"): the
+# robot stops either way, so these words only say more about the stop
+PAUSE_SPANS: tuple[tuple[str, ...], ...] = tuple(sorted({
+    (a, unit) for a in ("a", "one", "1") for unit in ("second", "sec", "moment", "minute", "min", "mo", "tick", "jiffy")
+} | {("a", "bit"), ("a", "while"), ("a", "little"), ("a", "little", "bit"), ("a", "few", "seconds"),
+     ("two", "seconds"), ("a", "couple", "of", "seconds"), ("just", "a", "second"), ("just", "a", "moment"),
+     ("now",), ("there",), ("right", "there"), ("where", "you", "are"), ("right", "where", "you", "are")},
+    key=lambda p: (-len(p), p)))
+PAUSE_SPANS_BY_FIRST = by_first(PAUSE_SPANS)
+
 STOP_VERB_NEEDS: dict[str, frozenset[str]] = {
     "stand": frozenset({"still", "there", "by", "put", "here", "fast", "your", "right", "at", "in", "near", "beside",
                         "inside"}),
@@ -480,6 +508,8 @@ RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("having", "a", "laugh"), ("only", "having", "a", "laugh"), ("just", "having", "a", "laugh"),
     ("only", "messing"), ("just", "messing"), ("im", "messing"), ("only", "teasing"), ("just", "teasing"),
     ("pulling", "your", "leg"), ("just", "pulling", "your", "leg"), ("only", "pulling", "your", "leg"),
+    # after a request in the same breath it takes that request back; alone it is a stop (stopping.py)
+    ("never", "mind"), ("nevermind",),
 )
 
 RETRACTIONS_BY_FIRST = by_first(sorted(RETRACTIONS, key=lambda r: (-len(r), r)))

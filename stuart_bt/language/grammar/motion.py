@@ -53,17 +53,26 @@ def read_motion(s: ParseState, i: int) -> Result:
     return _motion_onwards(s, verb, j, t)
 
 
+def _onward_to(s: ParseState, j: int) -> bool:
+    """Whether a place follows ``go on`` ("go on to", "go on over to", "go on ahead into"): then
+    "on" only colours the walk; otherwise "go on" is "carry on" or a sign-off."""
+    while s.at(j) in ("over", "ahead", "down", "up", "across", "right", "straight"):
+        j += 1
+    return s.at(j) in TO_WORDS
+
+
 def _past_motion_verb(s: ParseState, verb: str, j: int) -> tuple[int, bool] | Found:
     """Past the words that only colour a motion ("go right over to", "walk me to", "come with us
     to", "back up", "go straight back to"): the position of the word that says where, and whether
     it is a way back."""
     toks, n = s.toks, s.n
-    while j < n and toks[j] in ("over", "on", "yourself", "along", "right", "directly", "quickly", "now", "please",
-                                "just", "all", "the", "way") and not (
-            toks[j] == "right" and (j + 1 >= n or toks[j + 1] in BOUNDARY or toks[j + 1] not in TO_WORDS | HOME)):
+    while j < n and toks[j] in ("over", "on", "yourself", "along", "right", "ahead", "directly", "quickly", "now",
+                                "please", "just", "all", "the", "way") and not (
+            toks[j] in ("right", "ahead") and (j + 1 >= n or toks[j + 1] in BOUNDARY
+                                               or toks[j + 1] not in TO_WORDS | HOME)):
         if toks[j] == "the" and not (j + 1 < n and toks[j + 1] == "way"):
             break
-        if toks[j] == "on" and verb in ("go", "carry", "continue") and not (j + 1 < n and toks[j + 1] in TO_WORDS):
+        if toks[j] == "on" and verb in ("go", "carry", "continue") and not _onward_to(s, j + 1):
             break
         j += 1
     if s.at(j) in ("me", "us", "them", "him", "her") and s.at(j + 1) in TO_WORDS:

@@ -15,6 +15,7 @@ from .lexicon import (
     NP_STOP,
     OBJECT_PRONOUNS,
     PRONOUNS,
+    RETRACTIONS_BY_FIRST,
     STRONG_VERBS,
     SURFACES,
     TO_WORDS,
@@ -51,6 +52,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
             break
         if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
             break
+        if j > i and t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
+            break  # "go to the kitchen just kidding": what follows takes the request back
         if t == "back" and j > i and toks[j - 1] not in DETERMINERS and (
                 j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
                 or toks[j + 1] in ("here", "there", "over")):

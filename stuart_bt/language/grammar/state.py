@@ -13,6 +13,8 @@ from .lexicon import (
     CONDITIONS,
     CORRECTIONS_BY_FIRST,
     DETERMINERS,
+    RETRACTIONS_BY_FIRST,
+    SIGN_OFFS_BY_FIRST,
     STRONG_VERBS,
     TRAILING,
     VERB_PARTICLES,
@@ -110,10 +112,16 @@ def skip_rest(s: ParseState, j: int) -> int:
         elif not condition:
             if t in CORRECTIONS_BY_FIRST and s.phrase_at(j, CORRECTIONS_BY_FIRST) is not None:
                 break  # "go to the kitchen no the bathroom"
+            if t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
+                break  # "turn left just kidding": the driver decides whether it takes the turn back
             if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
                 break
+            if t == "do" and s.at(j + 1) in DETERMINERS:
+                break  # "... the corner do a high five": a light verb starts the next command
+            if t in SIGN_OFFS_BY_FIRST and (off := s.phrase_at(j, SIGN_OFFS_BY_FIRST)) and may_end(s, j + len(off)):
+                break  # "find the screwdriver you know": said, not asked (the driver reads it)
             if (t, s.at(j + 1)) in VERB_PARTICLES and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
                 break
         j += 1

@@ -7,13 +7,14 @@ from __future__ import annotations
 import re
 
 from ..numbers import UNITS, word_value
-from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, SPLITS
+from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, HESITANT, INTERRUPTING, SPLITS
 
 _NUM_UNIT = re.compile(r"(\d+(?:[.,]\d+)?)([^\W\d_]+|°)$")
 
 MAX_TOKENS = 200  # a spoken command is never longer; the rest of a longer text is not read
 
-_SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS))
+_SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS) | INTERRUPTING)
+_PAUSES = HARD_STOPS | {","}
 
 
 class Tokens:
@@ -93,37 +94,58 @@ def tokenize(text: str) -> Tokens:
     special = _SPECIAL
     for k, t in enumerate(words):
         if t in special or t == last or "'" in t or t[0] <= "9":
-            if "'" in t:
-                t = t.replace("'", "")
-                if not t:
-                    continue
-            if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
-                continue  # "um"; but "500 mm" is a unit, not a hum
-            if t == last and t not in HARD_STOPS and t != ",":
+            out, gerund = _special_piece(t, last)
+            if not out:
                 continue
-            c = t[0]
-            if "0" <= c <= "9":
-                um = _NUM_UNIT.match(t)
-                if um and um.group(2) in UNITS:
-                    toks += (um.group(1), um.group(2))
-                    src += (k, k)
-                    last = um.group(2)
-                    continue
-            elif t in SPLITS:
-                parts = SPLITS[t]
-                toks += parts
-                src += (k,) * len(parts)
-                last = parts[-1]
-                continue
-            elif t in GERUNDS:
-                t = GERUNDS[t]
-                gerunds.append(len(toks))
-        toks.append(t)
-        src.append(k)
-        last = t
+            if gerund:
+                gerunds.append(len(toks) + len(out) - 1)
+            toks += out
+            src += (k,) * len(out)
+            last = out[-1]
+        else:
+            toks.append(t)
+            src.append(k)
+            last = t
         if len(toks) >= MAX_TOKENS:
             return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds))
     return Tokens(toks, src, pieces, low, None, frozenset(gerunds))
+
+def _special_piece(t: str, last: str) -> tuple[tuple[str, ...], bool]:
+    """The tokens a piece that may need care becomes (none for a hesitation, a repeat, a lone
+    apostrophe or a comma inside a phrase; a number and its unit; a contraction's words; the
+    verb of an ing-form, with a pause before an exclamation), and whether it was an ing-form."""
+    if "'" in t:
+        t = t.replace("'", "")
+        if not t:
+            return (), False
+    if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
+        return (), False  # "um"; but "500 mm" is a unit, not a hum
+    if t == last and t not in HARD_STOPS and t != ",":
+        return (), False
+    pause = _pause_at(t, last)
+    if pause < 0:
+        return (), False
+    before = (",",) if pause else ()
+    c = t[0]
+    if "0" <= c <= "9":
+        um = _NUM_UNIT.match(t)
+        if um and um.group(2) in UNITS:
+            return (*before, um.group(1), um.group(2)), False
+    elif t in SPLITS:
+        return (*before, *SPLITS[t]), False
+    elif t in GERUNDS:
+        return (*before, GERUNDS[t]), True
+    return (*before, t), False
+
+
+def _pause_at(t: str, last: str) -> int:
+    """-1: the comma ``t`` is a hesitation inside a phrase ("go to the, um, bathroom": no phrase
+    ends with "the"), dropped; 1: a pause belongs before ``t`` ("turn left oh never mind": the
+    speaker broke off, as at a comma); 0: neither."""
+    if t == ",":
+        return -1 if last in HESITANT else 0
+    return 1 if t in INTERRUPTING and last and last not in _PAUSES else 0
+
 
 _ELONGATED = re.compile(r"([a-z])\1{2,}")  # no English word has a letter three times in a row
 
