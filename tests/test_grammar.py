@@ -566,3 +566,32 @@ def test_a_hedge_after_a_command_is_not_a_word_left_over() -> None:
 ])
 def test_around_says_how_far_and_the_side_which_way(text: str, yaw: float) -> None:
     assert one(text).yaw == pytest.approx(yaw)
+
+
+# -- what the eighth held-out batch taught (docs/voice.md) -----------------------------------------
+@pytest.mark.parametrize("text", ["walk forward two metres, then turn left and - freeze!",
+                                  "go to station four and wave at the - halt, the door is open",
+                                  "move forward one metre and — emergency stop!"])
+def test_a_dash_before_a_stop_breaks_off_the_plan(text: str) -> None:
+    assert shape(text) == [("stop", "")]
+
+
+def test_a_stop_said_again_and_again_after_a_plan_cancels_it_and_one_stop_is_a_step() -> None:
+    assert shape("wave and then go to the kitchen and stop stop stop") == [("stop", "")]
+    assert shape("walk to the kitchen and stop") == [("navigate_to_marker", "kitchen"), ("stop", "")]
+
+
+@pytest.mark.parametrize("text", ["go to the charging dock, your battery's nearly flat",
+                                  "get yourself to the charging dock, your battery's low",
+                                  "go to the kitchen, the coffee's ready"])
+def test_a_noun_with_is_after_a_command_is_a_statement_not_a_second_place(text: str) -> None:
+    assert len(shape(text)) == 1
+
+
+def test_a_possessive_still_names_a_place() -> None:
+    assert shape("go to Tom's desk") == [("navigate_to_marker", "toms desk")]
+
+
+def test_wait_before_a_retraction_is_an_interjection() -> None:
+    assert shape("pick up the book oh wait forget it") == []
+    assert shape("go to the kitchen, wait") == [("stop", "")]

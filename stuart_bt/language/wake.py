@@ -241,8 +241,10 @@ class WakeFilter:
         if span is None:
             return WakeMatch(False)
         k, dist = span
-        while i + k < len(toks) and (again := self._name_at(toks, i + k)) is not None:
-            k += again[0]  # "stuart stuart give me a high five": a name said twice is said once
+        # "stuart stuart give me a high five": a name said twice is said once (heard again, it
+        # starts as it did the first time; the check costs nothing for every other word)
+        while i + k < len(toks) and toks[i + k][:1] == toks[i][:1] and (again := self._name_at(toks, i + k)):
+            k += again[0]
         if offsets is None:
             offsets, pos = [], 0
             for t in toks[:i + k]:  # where each word starts in the utterance

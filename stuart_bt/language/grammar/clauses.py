@@ -180,6 +180,8 @@ def opens_conversation(s: ParseState, i: int) -> bool:
         return True
     if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
         return True
+    if any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY for k in range(i, min(i + 3, n))):
+        return True  # "your battery's low", "the coffee's ready": a noun and "is", a statement
     return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
 
 
@@ -315,6 +317,8 @@ def _another_target(s: ParseState, i: int, last: str) -> Result:
         return None  # "... and close the door": a verb and its object, not a second place
     if s.at(i) in DETERMINERS and s.at(i + 1) in DETERMINERS:
         return None  # "..., it's a bit gloomy": two determiners in a row open a clause, not a noun
+    if any(k in s.contracted for k in range(i, j - 1)):
+        return None  # "..., your battery's nearly flat": "'s" with words after it is "is", a statement
     target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
     if target is None:
         return None

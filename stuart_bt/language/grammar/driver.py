@@ -121,7 +121,7 @@ class _CommandReader:
         self.text, self.tokens = text, tokens
         self.toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
         self.s = ParseState(self.toks, len(self.toks), grammar.defaults, grammar.stop_words, read_clause,
-                            FAMILY_READERS)
+                            FAMILY_READERS, contracted=tokens.contracted)
         self.out: list[TaskIntent] = []
         self.i = 0
         self.dead = False  # the sentence opened as a question or statement
@@ -207,9 +207,10 @@ class _CommandReader:
         return True
 
     def _corrects_after(self, i: int) -> bool:
-        """A correction or a retraction at ``i``, or after a comma there ("actually, don't worry")."""
+        """A correction or a retraction at ``i``, after a comma or more interjections there
+        ("actually, don't worry", "oh wait, forget it")."""
         s = self.s
-        if s.at(i) == ",":
+        while s.at(i) == "," or s.at(i) in INTERJECTIONS:
             i += 1
         return i < s.n and bool(retraction_at(s, i) or s.phrase_at(i, CORRECTIONS_BY_FIRST))
 
@@ -309,8 +310,9 @@ class _CommandReader:
             s.first = False
             self.i = skip_rest(s, j)
             return
-        if specs[0][0] == STOP and not subordinate and self._interjected(start) and all(sp[0] == STOP for sp in specs):
-            self._forget_all()  # "..., oh no, stop!": a stop said over a plan cancels all of it
+        if specs[0][0] == STOP and not subordinate and all(sp[0] == STOP for sp in specs) and (
+                self._interjected(start) or s.at(start + 1) in _STOP_VERBS):
+            self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
@@ -397,6 +399,9 @@ class _CommandReader:
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
 
+_STOP_VERBS = frozenset({"stop", "halt", "freeze"})
+
+
 def _stop_said_at(s: ParseState, i: int) -> bool:
     """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop verb whose
     clause ends after it, after a pause, "but" or "so", perhaps with one softening word between
@@ -404,7 +409,7 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     if i == 0:
         return False
     k = i + 1 if s.toks[i] in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
-    return s.at(k) in ("stop", "halt", "freeze") and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
+    return s.at(k) in _STOP_VERBS and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:
@@ -420,7 +425,7 @@ def _stop_ends(s: ParseState, j: int) -> bool:
 _BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then"})
 
 # words said before a correction or a retraction ("actually, scratch that", "oh no, stop")
-INTERJECTIONS = frozenset({"actually", "oh", "ah", "well", "hmm", "ok", "so", "hang", "on", "hold"})
+INTERJECTIONS = frozenset({"actually", "oh", "ah", "well", "hmm", "ok", "so", "hang", "on", "hold", "wait"})
 
 # words after which a stop is the next step of the plan ("... and then stop"), not an interruption
 SEQUENCERS = frozenset({"then", "and", "afterwards", "afterward", "next", "finally", "lastly", "by", "that", "this"})

@@ -57,6 +57,7 @@ class ParseState:
     stop_words: frozenset[str]
     read_clause: Reader  # for a verb that leads into another ("go and get ...")
     readers: Mapping[str, Reader] = field(default_factory=dict)  # verb family -> its reader, see read_as
+    contracted: frozenset[int] = frozenset()  # tokens written with "'s" ("battery's"): Tokens.contracted
     last_action: str = ""
     last_object: str = ""
     last_place: str = ""

@@ -14,18 +14,23 @@ _NUM_UNIT = re.compile(r"(\d+(?:[.,]\d+)?)([^\W\d_]+|°)$")
 MAX_TOKENS = 200  # a spoken command is never longer; the rest of a longer text is not read
 
 _SPECIAL = frozenset(DISFLUENCIES | set(SPLITS) | set(GERUNDS) | INTERRUPTING)
+# a dash standing alone before a stop is the speaker breaking off ("... turn left and - freeze!",
+# "wave at the - halt"): read as the end of a sentence (one character for one: spans stay right)
+_BREAK_BEFORE_A_STOP = re.compile(r"(?<=\s)[-–—](?=\s*(?:stop|halt|freeze|emergency|wait)\b)")
 _PAUSES = HARD_STOPS | {","}
 
 
 class Tokens:
     """The tokens of a text and, computed only when asked (for ``raw_text``), their spans."""
 
-    __slots__ = ("_low", "_offsets", "_raw", "_src", "gerunds", "read_to", "toks")
+    __slots__ = ("_low", "_offsets", "_raw", "_src", "contracted", "gerunds", "read_to", "toks")
 
     def __init__(self, toks: list[str], src: list[int], raw: list[str], low: str, read_to: int | None = None,
-                 gerunds: frozenset[int] = frozenset()) -> None:
+                 gerunds: frozenset[int] = frozenset(), contracted: frozenset[int] = frozenset()) -> None:
         self.toks = toks
         self.gerunds = gerunds  # tokens that were said as ing-forms ("walking" -> "walk"): a subject, maybe
+        # nouns written with "'s" ("battery's"): a possessive or "is", which the dropped apostrophe hides
+        self.contracted = contracted
         self.read_to = len(raw) if read_to is None else read_to  # pieces read: fewer when MAX_TOKENS cut the text
         self._src = src  # token index -> index of the whitespace-separated piece it came from
         self._raw = raw
@@ -36,8 +41,9 @@ class Tokens:
         """The same tokens with every ``token`` left out."""
         keep = [k for k, t in enumerate(self.toks) if t != token]
         gerunds = frozenset(new for new, old in enumerate(keep) if old in self.gerunds)
+        contracted = frozenset(new for new, old in enumerate(keep) if old in self.contracted)
         return Tokens([self.toks[k] for k in keep], [self._src[k] for k in keep], self._raw, self._low, self.read_to,
-                      gerunds)
+                      gerunds, contracted)
 
     @property
     def truncated(self) -> bool:
@@ -80,6 +86,8 @@ def tokenize(text: str) -> Tokens:
     low = text.lower()
     if len(low) != len(text):  # a few characters change length in lower(): keep offsets right
         low = "".join(c.lower() if len(c.lower()) == 1 else c for c in text)
+    if "-" in low or "–" in low or "—" in low:
+        low = _BREAK_BEFORE_A_STOP.sub(";", low)
     if _DECIMAL.search(low):  # "1.5": the period is no separator here (rare: the slow way)
         pieces = _NUMBER_PIECE.findall(low.replace("’", "'").translate(_KEEP_POINTS))
     else:
@@ -92,13 +100,14 @@ def tokenize(text: str) -> Tokens:
     if _ELONGATED.search(low):
         words = [_ELONGATED.sub(r"\1", p) if p.isalpha() else p for p in pieces]
     special = _SPECIAL
+    contracted: list[int] = []
     for k, t in enumerate(words):
         if t in special or t == last or "'" in t or t[0] <= "9":
-            out, gerund = _special_piece(t, last)
+            out, kind = _special_piece(t, last)
             if not out:
                 continue
-            if gerund:
-                gerunds.append(len(toks) + len(out) - 1)
+            if kind:
+                (gerunds if kind == _GERUND else contracted).append(len(toks) + len(out) - 1)
             toks += out
             src += (k,) * len(out)
             last = out[-1]
@@ -107,35 +116,45 @@ def tokenize(text: str) -> Tokens:
             src.append(k)
             last = t
         if len(toks) >= MAX_TOKENS:
-            return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds))
-    return Tokens(toks, src, pieces, low, None, frozenset(gerunds))
+            return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds), frozenset(contracted))
+    return Tokens(toks, src, pieces, low, None, frozenset(gerunds), frozenset(contracted))
 
-def _special_piece(t: str, last: str) -> tuple[tuple[str, ...], bool]:
+_GERUND, _CONTRACTED = 1, 2  # what a special piece was, besides its tokens
+
+
+def _special_piece(t: str, last: str) -> tuple[tuple[str, ...], int]:
     """The tokens a piece that may need care becomes (none for a hesitation, a repeat, a lone
     apostrophe or a comma inside a phrase; a number and its unit; a contraction's words; the
-    verb of an ing-form, with a pause before an exclamation), and whether it was an ing-form."""
+    verb of an ing-form, with a pause before an exclamation), and what it was: ``_GERUND``
+    (an ing-form), ``_CONTRACTED`` (a word with "'s" the lexicon does not split), else 0."""
+    kind = 0
     if "'" in t:
+        kind = _CONTRACTED if t.endswith("'s") else 0
         t = t.replace("'", "")
         if not t:
-            return (), False
+            return (), 0
     if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
-        return (), False  # "um"; but "500 mm" is a unit, not a hum
-    if t == last and t not in HARD_STOPS and t != ",":
-        return (), False
+        return (), 0  # "um"; but "500 mm" is a unit, not a hum
+    if t == last and t not in HARD_STOPS and t != "," and t not in _SAID_AGAIN:
+        return (), 0
     pause = _pause_at(t, last)
     if pause < 0:
-        return (), False
+        return (), 0
     before = (",",) if pause else ()
     c = t[0]
     if "0" <= c <= "9":
         um = _NUM_UNIT.match(t)
         if um and um.group(2) in UNITS:
-            return (*before, um.group(1), um.group(2)), False
+            return (*before, um.group(1), um.group(2)), 0
     elif t in SPLITS:
-        return (*before, *SPLITS[t]), False
+        return (*before, *SPLITS[t]), 0
     elif t in GERUNDS:
-        return (*before, GERUNDS[t]), True
-    return (*before, t), False
+        return (*before, GERUNDS[t]), _GERUND
+    return (*before, t), kind
+
+
+# a stop said again and again is kept so: said over a plan it interrupts it ("... and stop stop stop")
+_SAID_AGAIN = frozenset({"stop", "halt", "freeze"})
 
 
 def _pause_at(t: str, last: str) -> int:
