@@ -241,10 +241,11 @@ class WakeFilter:
         if span is None:
             return WakeMatch(False)
         k, dist = span
-        # "stuart stuart give me a high five": a name said twice is said once (heard again, it
-        # starts as it did the first time; the check costs nothing for every other word)
-        while i + k < len(toks) and toks[i + k][:1] == toks[i][:1] and (again := self._name_at(toks, i + k)):
-            k += again[0]
+        # "stuart stuart give me a high five": a name said twice is said once (as it was heard
+        # the first time: no distance to work out for every other word)
+        said, length = toks[i:i + k], k
+        while toks[i + k:i + k + length] == said:
+            k += length
         if offsets is None:
             offsets, pos = [], 0
             for t in toks[:i + k]:  # where each word starts in the utterance
