@@ -595,3 +595,49 @@ def test_a_possessive_still_names_a_place() -> None:
 def test_wait_before_a_retraction_is_an_interjection() -> None:
     assert shape("pick up the book oh wait forget it") == []
     assert shape("go to the kitchen, wait") == [("stop", "")]
+
+
+@pytest.mark.parametrize("text", ["wave, little guy", "go to the kitchen, my friend", "pick up the cup, old chap"])
+def test_a_term_of_address_of_two_words_is_no_leftover(text: str) -> None:
+    from stuart_bt.language.parse import Parser
+
+    got = Parser(require_wake=False).parse(text)
+    assert len(got.intents) == 1 and not got.doubt, got
+
+
+# -- what the ninth held-out batch taught (docs/voice.md) ------------------------------------------
+@pytest.mark.parametrize("text", ["you can pick up bottles can't you", "the kitchen is this way isn't it",
+                                  "you went to the kitchen didn't you"])
+def test_a_tag_question_written_with_no_comma_is_talk(text: str) -> None:
+    assert shape(text) == []
+
+
+def test_an_impatient_tag_after_a_command_is_no_part_of_its_target() -> None:
+    assert shape("pick up the bottle can't you") == [("pick_up", "bottle")]
+
+
+@pytest.mark.parametrize("text, place", [("kitchen, now", "kitchen"), ("station four, go", "station four"),
+                                         ("to the workbench you go", "workbench"),
+                                         ("to the 3D printers!", "3d printers")])
+def test_a_place_said_as_an_order_with_no_verb_is_going_there(text: str, place: str) -> None:
+    assert shape(text) == [("navigate_to_marker", place)]
+
+
+@pytest.mark.parametrize("text", ["kitchen?", "to be honest, I like it", "to my surprise, you went there"])
+def test_a_noun_alone_is_no_order(text: str) -> None:
+    assert shape(text) == []
+
+
+def test_a_need_said_ahead_is_a_request() -> None:
+    assert shape("I'm going to need you to go to the kitchen") == [("navigate_to_marker", "kitchen")]
+    assert shape("I'm going to need you to stop moving and stay where you are") == [("stop", "")]
+    assert shape("I'm going to go to the kitchen") == []
+
+
+def test_a_stop_in_talk_may_say_until_when() -> None:
+    assert shape("whatever you're doing, just stop for a second while I fix your arm") == [("stop", "")]
+
+
+def test_giving_a_wave_after_a_place_is_the_next_command() -> None:
+    assert shape("when you get to the kitchen give everyone a wave") == [("navigate_to_marker", "kitchen"),
+                                                                         ("gesture", "wave")]

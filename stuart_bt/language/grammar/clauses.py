@@ -8,7 +8,7 @@ import math
 from collections.abc import Callable
 
 from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND
-from ..numbers import ANGLE, word_value
+from ..numbers import ANGLE, UNITS, word_value
 from .amounts import MAX_BARE_SIDESTEP_M, NUMBER_STARTS, read_motion_terms, read_move, read_turn_terms
 from .finding import read_find, read_find_noun
 from .gestures import read_gesture, skip_gesture_tail
@@ -49,6 +49,7 @@ from .lexicon import (
     WANTS_OBJECT,
     WH,
     WISH_QUESTIONS_BY_FIRST,
+    by_first,
 )
 from .light_verbs import read_do
 from .motion import VISIT_VERBS, read_guide, read_motion, read_turn, read_visit_by
@@ -251,6 +252,8 @@ def _verbless(s: ParseState, i: int) -> Result:
     got = _idiom_or_gesture(s, i)
     if got is not None:
         return got
+    if s.first and (got := _bare_order(s, i)) is not None:
+        return got
     last = s.last_action
     if last == NAVIGATE and t in TO_WORDS and t != "for" and i + 1 < s.n:  # "... then to the kitchen"
         k = i + 1
@@ -267,6 +270,33 @@ def _verbless(s: ParseState, i: int) -> Result:
             not s.subordinate):  # "... and when you're ready, wave": "ready" is no second place
         return _another_target(s, i, last)
     return None
+
+
+_ORDER_WORDS = by_first(sorted({("now",), ("go",), ("please",), ("quick",), ("quickly",), ("asap",), ("pronto",),
+                                 ("you", "go"), ("off", "you", "go"), ("right", "now"), ("chop", "chop")},
+                                key=lambda p: (-len(p), p)))
+
+
+_ORDER_ENDS = HARD_STOPS | {"and", "then"}  # "to the kitchen!", "to the kitchen and then wave"
+
+
+def _bare_order(s: ParseState, i: int) -> Result:
+    """A place said as an order with no verb, first in the command: "kitchen, now", "station
+    four, go", "to the workbench you go", "to the 3D printers!". Alone, a noun is no order
+    ("kitchen?" asks about it); "to" and a place must end the sentence."""
+    j = i + 1 if s.toks[i] == "to" else i
+    if j >= s.n or s.toks[j] in ALL_VERBS or s.toks[j] in SUBJECTS and s.toks[j] not in DETERMINERS:
+        return None  # "to be honest, ...", "to me it looks fine"
+    words, e = read_noun_phrase(s, j)
+    if any(w in DIRECTIONS or w in UNITS for w in words):
+        return None  # "three metres forward please": an amount, read as a move
+    k = e + 1 if s.at(e) == "," else e
+    order = s.phrase_at(k, _ORDER_WORDS) if k < s.n else None
+    end = k + len(order) if order else e
+    if not words or not may_end(s, end) or not (order or (j > i and (e >= s.n or s.toks[e] in _ORDER_ENDS))):
+        return None
+    place = read_place(s, words)
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], end) if place is not None else None
 
 
 def _idiom_or_gesture(s: ParseState, i: int) -> Result:

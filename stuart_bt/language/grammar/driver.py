@@ -418,7 +418,8 @@ def _stop_ends(s: ParseState, j: int) -> bool:
     if s.at(j) == "for":
         j += 1
     span = s.phrase_at(j, PAUSE_SPANS_BY_FIRST)
-    return may_end(s, j + len(span) if span else j)
+    j += len(span) if span else 0
+    return s.at(j) in CONDITIONS or may_end(s, j)  # "... just stop for a second while I fix your arm"
 
 
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")

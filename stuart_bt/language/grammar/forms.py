@@ -6,7 +6,18 @@ sentence with the form of talk never moves the robot, whatever verbs it holds.
 
 from __future__ import annotations
 
-from .lexicon import BOUNDARY, HARD_STOPS, REQUEST_TAGS, RETRACTIONS_BY_FIRST, TAG_AUX, TAG_PRONOUNS, TAG_WORDS
+from .lexicon import (
+    ALL_VERBS,
+    BOUNDARY,
+    HARD_STOPS,
+    NEGATIVE_TAG_AUX,
+    REQUEST_TAGS,
+    RETRACTIONS_BY_FIRST,
+    SUBJECTS,
+    TAG_AUX,
+    TAG_PRONOUNS,
+    TAG_WORDS,
+)
 from .state import ParseState
 
 
@@ -16,8 +27,8 @@ def question_tags(toks: list[str]) -> bytearray | None:
     auxiliary and a pronoun ("isn't it", "wouldn't it", "didn't you"). A modal and "you" ("will
     you", "won't you") is a request when the sentence opens with a command, so it is left to the
     clause reader."""
-    if "," not in toks:  # every tag follows a comma: most commands have none
-        return None
+    if "," not in toks:  # a written tag follows a comma: most commands have none
+        return _unpunctuated_tag(toks)
     out = bytearray(len(toks))
     start = 0
     for end in range(len(toks) + 1):
@@ -42,6 +53,25 @@ def _ends_with_tag(toks: list[str], start: int, end: int, terminator: str) -> bo
     # "..., is it not?"
     return len(words) >= 5 and words[-4] == "," and words[-3] in TAG_AUX and words[-2:] == ["not", words[-1]] and (
         words[-1] in TAG_PRONOUNS)
+
+
+def _unpunctuated_tag(toks: list[str]) -> bytearray | None:
+    """A tag as a recogniser writes it, with no comma: a negative auxiliary and a pronoun ending
+    a sentence that opens with its subject ("you can pick up bottles can't you", "the kitchen is
+    this way isn't it"). A sentence opening with a verb ("pick up the bottle can't you") is an
+    impatient request, left to the clause reader."""
+    n = len(toks)
+    end = n - 1 if n and toks[-1] in HARD_STOPS else n
+    if end < 4 or toks[end - 2] not in NEGATIVE_TAG_AUX or toks[end - 1] not in TAG_PRONOUNS:
+        return None
+    start = end - 2
+    while start > 0 and toks[start - 1] not in HARD_STOPS:
+        start -= 1
+    if toks[start] in ALL_VERBS and toks[start] not in SUBJECTS:
+        return None
+    out = bytearray(n)
+    out[start:end] = b"\x01" * (end - start)
+    return out
 
 
 def retraction_at(s: ParseState, i: int) -> int:

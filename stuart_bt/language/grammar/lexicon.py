@@ -76,7 +76,8 @@ NP_STOP = BOUNDARY | frozenset({
     "no", "sorry", "oops", "i", "never",  # a correction or a new sentence follows ("go to the kitchen i said")
     "is", "are", "was", "were",  # a clause: "pick up whatever is on the table"
     "you",  # a new clause: "... the kitchen you need a map"
-    "do",  # a new clause: "when you reach the corner do a high five"
+    "cant", "wont", "couldnt", "wouldnt", "shouldnt", "dont", "doesnt", "didnt", "isnt", "arent",  # a tag
+    "do", "give",  # a new clause: "when you reach the corner do a high five", "... give everyone a wave"
     "together", "alone",
 })
 
@@ -110,6 +111,9 @@ SIGN_OFFS: tuple[tuple[str, ...], ...] = (
     ("thank", "you"), ("thanks",), ("cheers",), ("much", "appreciated"), ("if", "you", "dont", "mind"),
     ("when", "you", "can"), ("when", "youre", "ready"), ("in", "your", "own", "time"), ("no", "rush"),
     ("take", "your", "time"), ("good", "lad"), ("good", "robot"), ("atta", "boy"), ("you", "got", "this"),
+    # terms of address of two words ("wave, little guy")
+    *((adj, noun) for adj in ("little", "big", "old", "my", "good")
+      for noun in ("guy", "buddy", "man", "fella", "friend", "chap", "pal", "mate", "boy", "robot")),
     # hedges that close a sentence without adding to it
     ("you", "know"), ("know", "what", "i", "mean"),
     ("you", "know", "what", "i", "mean"), ("if", "you", "know", "what", "i", "mean"), ("yeah",), ("innit",),
@@ -189,6 +193,12 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
     ("please", "to"), ("mind",), ("you", "mind"),
+} | {  # a need said ahead: "I'm going to need you to ...", "I'll want you to ..."
+    (*subject, *when, verb, "you", "to")
+    for subject in (("im",), ("i", "am"), ("were",), ("we", "are"), ("ill",), ("i", "will"), ("well",), ("we", "will"))
+    for when in ((), ("go", "to"), ("going", "to"), ("gonna",))  # "going" is read as "go"
+    for verb in ("need", "want", "ask")
+    if not (when and subject[-1] in ("will", "ill", "well"))
 } | {  # a request put as a question about what the robot thinks it can do: "do you think you could ..."
     (*opener, verb, *that, "you", modal)
     for opener in (("do", "you"), ("d", "you"), ("dyou",), ())
@@ -525,6 +535,7 @@ TAG_AUX = frozenset({"is", "isnt", "are", "arent", "was", "wasnt", "were", "were
                      "would", "wouldnt", "can", "cant", "could", "couldnt", "should", "shouldnt", "shall", "am",
                      "aint", "might", "must"})
 REQUEST_TAGS = frozenset({"will", "wont", "would", "can", "could"})  # "..., will you?" after a command asks
+NEGATIVE_TAG_AUX = frozenset(a for a in TAG_AUX if a.endswith("nt"))  # "... can't you": a tag even unwritten
 
 # words that label an item of a spoken list ("item one, go to station 2; item two, ..."), not a place
 LIST_LABELS = frozenset({"item", "step", "point", "task", "number", "part", "stage"})

@@ -99,6 +99,9 @@ def may_end(s: ParseState, j: int) -> bool:
     return True
 
 
+_RECEIVERS = frozenset({"me", "us", "them", "him", "her", "everyone", "everybody", "people", "the"})
+
+
 def skip_rest(s: ParseState, j: int) -> int:
     """After a clause: skip words the grammar does not use ("at the door", "quickly") up to the
     next connector, a purpose "to <verb>", or a new verb that starts a command."""
@@ -119,8 +122,8 @@ def skip_rest(s: ParseState, j: int) -> int:
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
                 break
-            if t == "do" and s.at(j + 1) in DETERMINERS:
-                break  # "... the corner do a high five": a light verb starts the next command
+            if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
+                break  # "... the corner do a high five", "... give everyone a wave": the next command
             if t in SIGN_OFFS_BY_FIRST and (off := s.phrase_at(j, SIGN_OFFS_BY_FIRST)) and may_end(s, j + len(off)):
                 break  # "find the screwdriver you know": said, not asked (the driver reads it)
             if (t, s.at(j + 1)) in VERB_PARTICLES and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
