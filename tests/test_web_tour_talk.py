@@ -66,3 +66,16 @@ def test_continue_pressed_on_the_page_lets_a_tree_held_by_a_spoken_stop_go_on():
     assert pressed == (200, {"ok": True})
     assert heard == [("stop", "stop", "web"), ("Hey Stuart, continue", "continue", "web")]
     assert end["status"] == "SUCCESS"
+
+
+def test_a_stop_said_as_run_is_pressed_waits_for_the_tree_and_holds_it():
+    """Run reserves the tree at once (the page says busy) and builds it on the worker; what is
+    said in between is for that tree, not refused ("nothing is running to talk to")."""
+    with Served("trees/lab_tour.yaml", "--backend", "dry", "--speed", "10", "--paused") as served, \
+            EventFeed(served) as feed:
+        ran = call(served, "POST", "/api/run", {})
+        stopped = call(served, "POST", "/api/say", {"text": "Hey Stuart, stop"})  # no wait for the start
+        hold = feed.wait_for(lambda e: e["kind"] == "hold")
+    assert ran[0] == 200
+    assert stopped[0] == 200 and stopped[1]["kind"] == "stop", stopped
+    assert hold["reason"].startswith("stop said")

@@ -18,6 +18,7 @@ from __future__ import annotations
 import itertools
 import queue
 import threading
+import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -33,6 +34,7 @@ from ..tree.spec import Location, NodeSpec, TreeSpec
 
 WAKE = "Hey Stuart"
 IDLE_STEP = 0.05  # sim seconds the idle world advances per step (so the arms follow the sliders)
+TALK_START_WAIT_S = 30.0  # wall seconds an utterance waits for a reserved run's tree to be built
 
 
 class ControlError(StuartError):
@@ -61,6 +63,8 @@ class TreeControl:
         self.autostart = autostart
         self._jobs: queue.Queue[Job | None] = queue.Queue()
         self._lock = threading.Lock()
+        # told when a run's talk comes or goes: an utterance said as a run starts waits for it
+        self._talk_changed = threading.Condition(self._lock)
         self._executor: Any = None
         self._current: Job | None = None
         self._finished_steps: set[str] = set()  # top-level children of the root that succeeded
@@ -156,7 +160,13 @@ class TreeControl:
         return ears.hear(talk, samples, ended_at)
 
     def _talking(self) -> TourTalk:
-        with self._lock:
+        """The running tree's talk. Run reserves the tree at once (the page says busy) and builds it
+        on the worker: what is said in between waits for it instead of being refused."""
+        deadline = time.monotonic() + TALK_START_WAIT_S
+        with self._talk_changed:
+            while self._talk is None and self._current is not None and self._current.main and (
+                    not self._closing.is_set()) and (left := deadline - time.monotonic()) > 0:
+                self._talk_changed.wait(left)
             talk = self._talk
         if talk is None:
             raise ControlError("nothing is running to talk to: Run starts the tree, and what is said then goes to "
@@ -224,15 +234,17 @@ class TreeControl:
             except Exception as e:  # noqa: BLE001 - a bug in one run must not take the page down
                 self.events.publish("warning", message=f"web run {job.label}: {type(e).__name__}: {e}")
             finally:
-                with self._lock:
+                with self._talk_changed:
                     self._current = None
                     self._executor = None
+                    self._talk_changed.notify_all()
 
     def _run(self, job: Job) -> None:
         executor = self.session.executor_for(job.spec)
         talk = TourTalk(self.session, executor, self._parser, self._resolver) if job.main else None
-        with self._lock:
+        with self._talk_changed:
             self._executor, self._talk = executor, talk
+            self._talk_changed.notify_all()
             if self._closing.is_set():
                 executor.request_stop("shutting down")
         if job.main:
