@@ -33,6 +33,7 @@ from .lexicon import (
     MOTION_VERBS,
     OBJECT_PRONOUNS,
     PICK_VERBS,
+    PLAIN_STOPS,
     POLITE_BY_FIRST,
     REORDER,
     REQUESTS_BY_FIRST,
@@ -181,7 +182,8 @@ def opens_conversation(s: ParseState, i: int) -> bool:
         return True
     if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
         return True
-    if any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY for k in range(i, min(i + 3, n))):
+    if s.contracted and any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY
+                            for k in range(i, min(i + 3, n))):
         return True  # "your battery's low", "the coffee's ready": a noun and "is", a statement
     return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
 
@@ -233,7 +235,7 @@ def read_clause(s: ParseState, i: int) -> Result:
 def _stop_phrase(s: ParseState, i: int, phrase: tuple[str, ...]) -> Result:
     """A stop said as a phrase ("hold on", "that's enough", "don't move"), to the next connector."""
     t = s.toks[i]
-    if t in ("stop", "halt", "freeze"):
+    if t in PLAIN_STOPS:
         return read_stop(s, i)
     j = i + len(phrase)
     if t in ("easy", "steady", "enough") and not may_end(s, j):
@@ -347,7 +349,7 @@ def _another_target(s: ParseState, i: int, last: str) -> Result:
         return None  # "... and close the door": a verb and its object, not a second place
     if s.at(i) in DETERMINERS and s.at(i + 1) in DETERMINERS:
         return None  # "..., it's a bit gloomy": two determiners in a row open a clause, not a noun
-    if any(k in s.contracted for k in range(i, j - 1)):
+    if s.contracted and any(k in s.contracted for k in range(i, j - 1)):
         return None  # "..., your battery's nearly flat": "'s" with words after it is "is", a statement
     target = read_place(s, words) if last == NAVIGATE else read_object(s, words)
     if target is None:

@@ -51,6 +51,7 @@ from .lexicon import (
     NP_STOP,
     PAST,
     PAUSE_SPANS_BY_FIRST,
+    PLAIN_STOPS,
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
     STOP_PHRASES_BY_FIRST,
@@ -311,7 +312,7 @@ class _CommandReader:
             self.i = skip_rest(s, j)
             return
         if specs[0][0] == STOP and not subordinate and all(sp[0] == STOP for sp in specs) and (
-                self._interjected(start) or s.at(start + 1) in _STOP_VERBS):
+                self._interjected(start) or s.at(start + 1) in PLAIN_STOPS):
             self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
@@ -399,9 +400,6 @@ class _CommandReader:
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
 
-_STOP_VERBS = frozenset({"stop", "halt", "freeze"})
-
-
 def _stop_said_at(s: ParseState, i: int) -> bool:
     """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop verb whose
     clause ends after it, after a pause, "but" or "so", perhaps with one softening word between
@@ -409,7 +407,7 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     if i == 0:
         return False
     k = i + 1 if s.toks[i] in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
-    return s.at(k) in _STOP_VERBS and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
+    return s.at(k) in PLAIN_STOPS and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:

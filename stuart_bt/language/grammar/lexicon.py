@@ -345,6 +345,9 @@ FIND_NOUNS = frozenset({"look", "search", "hunt", "scan", "check", "peek", "peep
 
 FIND_NOUN_LEADS = frozenset({"have", "take", "do", "give", "make"})
 
+# the verbs that only ever mean stopping the robot (the wider STOP_VERBS below also hold "wait",
+# "stay", ...): said again, after a pause in talk, or as a plain command
+PLAIN_STOPS = frozenset({"stop", "halt", "freeze"})
 STOP_VERBS = frozenset({"stop", "halt", "freeze", "pause", "cancel", "abort", "wait", "stay", "quit", "cease",
                         "stand", "hold", "whoa", "woah", "enough", "never", "forget", "cut", "terminate", "end",
                         "interrupt", "chill", "hang", "desist", "emergency", "e", "brake", "kill", "break", "wo"})

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 from ..numbers import UNITS, word_value
-from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, HESITANT, INTERRUPTING, SPLITS
+from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, HESITANT, INTERRUPTING, PLAIN_STOPS, SPLITS
 
 _NUM_UNIT = re.compile(r"(\d+(?:[.,]\d+)?)([^\W\d_]+|°)$")
 
@@ -135,8 +135,8 @@ def _special_piece(t: str, last: str) -> tuple[tuple[str, ...], int]:
             return (), 0
     if t in DISFLUENCIES and not (t in UNITS and last and word_value(last) is not None):
         return (), 0  # "um"; but "500 mm" is a unit, not a hum
-    if t == last and t not in HARD_STOPS and t != "," and t not in _SAID_AGAIN:
-        return (), 0
+    if t == last and t not in HARD_STOPS and t != "," and t not in PLAIN_STOPS:
+        return (), 0  # a stop said again is kept: over a plan it interrupts it ("... and stop stop stop")
     pause = _pause_at(t, last)
     if pause < 0:
         return (), 0
@@ -152,9 +152,6 @@ def _special_piece(t: str, last: str) -> tuple[tuple[str, ...], int]:
         return (*before, GERUNDS[t]), _GERUND
     return (*before, t), kind
 
-
-# a stop said again and again is kept so: said over a plan it interrupts it ("... and stop stop stop")
-_SAID_AGAIN = frozenset({"stop", "halt", "freeze"})
 
 
 def _pause_at(t: str, last: str) -> int:
