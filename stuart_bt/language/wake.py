@@ -26,7 +26,8 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 # Greetings the robot answers to, and what recognisers write for them.
-GREETINGS: tuple[str, ...] = ("hey", "hi", "hello", "ok", "okay", "yo", "hiya", "howdy", "excuse me")
+GREETINGS: tuple[str, ...] = ("hey", "hi", "hello", "ok", "okay", "yo", "hiya", "howdy", "excuse me", "good morning",
+                              "good afternoon", "good evening", "morning", "afternoon", "evening")
 GREETING_VARIANTS: dict[str, tuple[str, ...]] = {
     "hey": ("hay", "hei", "heh", "hej", "he", "eh", "a", "ay", "aye", "hay there"),
     "hi": ("hai", "high", "hy"),

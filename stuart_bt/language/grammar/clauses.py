@@ -43,6 +43,9 @@ from .lexicon import (
     STOP_PHRASES_BY_FIRST,
     STOP_VERBS,
     SUBJECTS,
+    THANKS_AHEAD_FEELINGS,
+    THANKS_AHEAD_INTENSIFIERS,
+    THANKS_AHEAD_OPENERS_BY_FIRST,
     TO_WORDS,
     TURN_IDIOMS_BY_FIRST,
     TURN_VERBS,
@@ -102,6 +105,9 @@ def _polite(s: ParseState, i: int) -> int:
         if i >= n:
             break
         t = toks[i]
+        if t in THANKS_AHEAD_OPENERS_BY_FIRST and (after := _thanks_ahead(s, i)):
+            i = after  # "I'd be ever so grateful if you could ..."
+            continue
         p = s.phrase_at(i, POLITE_BY_FIRST) if t in POLITE_BY_FIRST else None
         if p is None:
             if t in MODALS and i + 1 < n and toks[i + 1] == "you":
@@ -124,9 +130,26 @@ def _polite(s: ParseState, i: int) -> int:
     return i
 
 
+def _thanks_ahead(s: ParseState, i: int) -> int:
+    """Index after thanks said ahead of a request at ``i`` ("I'd be ever so grateful if you
+    could", "it would be great if you would"), or 0."""
+    opener = s.phrase_at(i, THANKS_AHEAD_OPENERS_BY_FIRST)
+    if opener is None:
+        return 0
+    j = i + len(opener)
+    while s.at(j) in THANKS_AHEAD_INTENSIFIERS:
+        j += 1
+    if s.at(j) in THANKS_AHEAD_FEELINGS and s.at(j + 1) == "if" and s.at(j + 2) == "you" and s.at(j + 3) in (
+            "could", "would", "can"):
+        return j + 4
+    return 0
+
+
 # polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
 _BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
-                                 ("you", "mind")})
+                                 ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"),
+                                 *((subject, verb) for subject in ("i", "we")
+                                   for verb in ("guess", "suppose", "reckon"))})
 
 
 def _request(s: ParseState, i: int) -> Result:

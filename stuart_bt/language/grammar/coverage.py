@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from .driver import TALK, TIMES, USED, Reading
+from .driver import CHOICE, TALK, TIMES, USED, Reading
 from .lexicon import (
     BOUNDARY,
     CONNECTORS,
@@ -27,12 +27,18 @@ from .lexicon import (
     TRAILING,
 )
 
+# said to frame what follows, never part of what is asked ("so basically, just go to the bathroom")
+DISCOURSE_ADVERBS = frozenset({"basically", "literally", "honestly", "seriously", "essentially", "obviously",
+                               "anyway", "anyhow", "frankly", "simply", "totally", "definitely", "sort", "kind"})
+
 # words that never carry a command's meaning, so leaving them unread loses nothing
 FILLER = (BOUNDARY | HARD_STOPS | TRAILING | DETERMINERS | PRONOUNS | OBJECT_PRONOUNS | NP_STOP | DISFLUENCIES
           | frozenset(w for phrase in POLITE for w in phrase) | frozenset(w for c in CONNECTORS for w in c)
           | frozenset({"you", "u", "hey", "hi", "hello", "oh", "yo", "guys", "folks", "everyone", "just", "really",
                        "kindly", "go", "ahead", "cheers", "ta", "lovely", "great", "cool", "nice", "good", "sorry",
-                       "excuse", "thx", "like", "do", "that", "for", "me", "wait", "then", "no", "yes", "be"})) - TIMES
+                       "excuse", "thx", "like", "do", "that", "for", "me", "wait", "then", "no", "yes", "be"})
+          | DISCOURSE_ADVERBS) - TIMES
+
 
 
 @dataclass(frozen=True)
@@ -59,6 +65,6 @@ def coverage(reading: Reading, vocatives: Iterable[str] = ()) -> Coverage:
             used.append(tok)
         elif mark == TALK:
             talk.append(tok)
-        elif tok not in FILLER and tok not in extra:
-            unused.append(tok)
+        elif (mark == CHOICE and tok not in BOUNDARY) or (tok not in FILLER and tok not in extra):
+            unused.append(tok)  # "or maybe right": in a choice left open even a filler word is unsure
     return Coverage(tuple(used), tuple(unused), tuple(talk), reading.unread)

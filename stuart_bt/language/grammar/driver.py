@@ -201,8 +201,11 @@ class _CommandReader:
             return False
         kind, self.i = con
         if kind == "or":  # "the kitchen or the bathroom": a choice is not a plan
+            offered = self.i
             while self.i < s.n and toks[self.i] not in HARD_STOPS:
                 self.i += 1
+            if self.out:  # "turn left, or maybe right": which one is meant? every word of the choice is unsure
+                self._mark(offered, self.i, CHOICE)
         elif kind == "reorder" and self.out:
             self.reorder_at = len(self.out) - _last_clause_len(self.out)
         return True
@@ -260,7 +263,8 @@ class _CommandReader:
         # repeats the intent just before ("look for the bottle and when you find it ...")
         perfect = toks[self.i + 1] == "youve" or t == "once"
         self.i += 2 if toks[self.i + 1] in ("you", "youve", "youre", "u") else 1
-        if t == "after" and attached:  # "go to the kitchen after you wave": the wave first
+        if t in ("after", "when", "once") and attached:  # "go to the kitchen after you wave": the wave first;
+            # "turn left once you get to the kitchen", "wave when you arrive": the arrival first
             self.reorder_at = len(self.out) - _last_clause_len(self.out)
         if self.i < n and toks[self.i] == "have" and toks[self.i - 1] == "you":
             self.i += 1  # "once you have picked up ..."
@@ -305,14 +309,13 @@ class _CommandReader:
             self._mark(start, j, TALK)
             self.i = j
             return
-        if subordinate and self.out and [(it.action, it.target) for it in self.out[-len(specs):]] == [
-                (a, tg) for a, tg, *_ in specs]:
+        if subordinate and self.out and {(a, tg) for a, tg, *_ in specs} <= {(it.action, it.target) for it in self.out}:
             self._mark(start, j, USED)
             s.first = False
             self.i = skip_rest(s, j)
             return
         if specs[0][0] == STOP and not subordinate and all(sp[0] == STOP for sp in specs) and (
-                self._interjected(start) or s.at(start + 1) in PLAIN_STOPS):
+                self._interjected(start) or s.at(start + 1) in PLAIN_STOPS or self.toks[start] in _CHANGE_OF_MIND):
             self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
         a, b = self.tokens.span(start, min(j, s.n) - 1)
@@ -320,6 +323,9 @@ class _CommandReader:
         self._mark(start, _condition_at(self.toks, start, j), USED)  # "... until the professor arrives": unused
         self._remember(specs)
         self.i = self.clause_end = skip_rest(s, j)
+        why = _reason_at(self.toks, j, self.i)
+        if why < self.i:  # "turn around so we can see your back", "... because I said so": said, not asked
+            self._mark(why, self.i, TALK)
         if specs[-1][1] and s.at(j) in QUALIFIERS and _says_which(self.toks[j:self.i]):
             self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step
 
@@ -401,13 +407,27 @@ QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "u
                         "inside", "over", "underneath", "above", "below", "opposite"})
 
 def _stop_said_at(s: ParseState, i: int) -> bool:
-    """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop verb whose
-    clause ends after it, after a pause, "but" or "so", perhaps with one softening word between
-    ("..., but stop right now", "you're late so just stop", "..., actually freeze a moment")."""
-    if i == 0:
+    """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop whose clause
+    ends after it, after a pause, "but" or "so", perhaps with softening words between ("..., but
+    stop right now", "you're late so just stop", "..., actually freeze a moment", "..., but please
+    stop moving for now", "..., but hold it right there")."""
+    if i == 0 or s.toks[i - 1] not in (",", "but", "so"):
         return False
-    k = i + 1 if s.toks[i] in _BEFORE_A_STOP else i  # "..., you know what, just stop"; "..., actually stop"
-    return s.at(k) in PLAIN_STOPS and s.toks[i - 1] in (",", "but", "so") and _stop_ends(s, k + 1)
+    k = i
+    while k < i + 2 and s.at(k) in _BEFORE_A_STOP:  # "..., you know what, just stop"; "..., but please just stop"
+        k += 1
+    end = _stop_phrase_end(s, k)
+    return end > 0 and _stop_ends(s, end)
+
+
+def _stop_phrase_end(s: ParseState, k: int) -> int:
+    """Where a stop said at ``k`` ends: after "stop", "freeze", "halt" (and "moving", "it",
+    "everything" after them) or "hold it" / "hold on" / "hold still"; 0 when none is said there."""
+    if s.at(k) in PLAIN_STOPS:
+        return k + 2 if s.at(k + 1) in ("move", "moving", "it", "everything") else k + 1  # "moving" reads as "move"
+    if s.at(k) in ("hold", "hang") and s.at(k + 1) in ("it", "on", "still", "up"):
+        return k + 2
+    return 0
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:
@@ -422,6 +442,10 @@ def _stop_ends(s: ParseState, j: int) -> bool:
 
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
 _BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then"})
+
+# words that open a stop said as a change of mind, even after "and" ("go to the workbench and um
+# actually wait, freeze": the walk is called off)
+_CHANGE_OF_MIND = frozenset({"actually", "oh", "no", "hmm", "hold", "hang"})
 
 # words said before a correction or a retraction ("actually, scratch that", "oh no, stop")
 INTERJECTIONS = frozenset({"actually", "oh", "ah", "well", "hmm", "ok", "so", "hang", "on", "hold", "wait"})
@@ -438,8 +462,10 @@ TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "m
                    "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day", "past", "oclock",
                    "noon", "midnight", "pm"})
 
-USED, TALK = 1, 2  # what a token was to the reader: words a command came from, words of conversation
-_RUNS = {USED: bytes((USED,)) * 256, TALK: bytes((TALK,)) * 256}  # MAX_TOKENS marks of each, sliced
+# what a token was to the reader: words a command came from, words of conversation, words of a
+# choice the speaker left open ("..., or maybe right": the robot asks)
+USED, TALK, CHOICE = 1, 2, 3
+_RUNS = {how: bytes((how,)) * 256 for how in (USED, TALK, CHOICE)}  # MAX_TOKENS marks of each, sliced
 
 
 def _condition_at(toks: list[str], start: int, end: int) -> int:
@@ -448,10 +474,26 @@ def _condition_at(toks: list[str], start: int, end: int) -> int:
     if CONDITIONS.isdisjoint(toks[start + 1:end]):  # the common case, without a Python loop
         return end
     for k in range(start + 1, end):  # not its first word: "if you could ..." is polite
-        if toks[k] in CONDITIONS:
+        if toks[k] in CONDITIONS and not (toks[k] == "if" and k + 2 < end and toks[k + 1] == "you" and toks[
+                k + 2] in ("could", "would")):  # nor in a polite opener: "I'd be grateful if you could ..."
             return k
     return end
 
+
+def _reason_at(toks: list[str], start: int, end: int) -> int:
+    """Where a reason or a purpose starts among the words after a command ("because we want to
+    see your back", "so that everyone can see", "so we can see your back"), else ``end``: it says
+    why, not what, so its words are talk, never unused words that make the robot ask."""
+    for k in range(start, end):
+        t = toks[k]
+        if t in _REASONS or (t == "so" and k + 1 < end and toks[k + 1] in _PURPOSE_SUBJECTS):
+            return k
+    return end
+
+
+_REASONS = frozenset({"because", "cause", "cos", "coz", "cuz"})
+_PURPOSE_SUBJECTS = frozenset({"that", "we", "i", "you", "they", "everyone", "everybody", "people", "he", "she",
+                               "the", "our", "my", "visitors", "guests", "kids", "children"})
 
 _NOT_WHICH = TIMES | BODY_PARTS | {"your"}
 

@@ -139,6 +139,16 @@ SUBJECTS = frozenset({"i", "im", "ive", "id", "ill", "we", "were", "weve", "wed"
 MODALS = frozenset({"can", "could", "would", "will", "wont", "wouldnt", "cant", "couldnt"})
 
 
+# thanks said ahead of a request: "I'd be ever so grateful if you could ...", "it would be great if
+# you could ..." (read by clauses._thanks_ahead: as listed phrases they were thousands)
+THANKS_AHEAD_OPENERS: tuple[tuple[str, ...], ...] = (
+    ("id", "be"), ("i", "would", "be"), ("wed", "be"), ("we", "would", "be"), ("itd", "be"), ("it", "would", "be"),
+    ("itll", "be"), ("it", "will", "be"), ("thatd", "be"))
+THANKS_AHEAD_OPENERS_BY_FIRST = by_first(sorted(THANKS_AHEAD_OPENERS, key=lambda p: (-len(p), p)))
+THANKS_AHEAD_INTENSIFIERS = frozenset({"so", "ever", "really", "very", "most", "super", "truly", "awfully"})
+THANKS_AHEAD_FEELINGS = frozenset({"grateful", "glad", "happy", "pleased", "thankful", "delighted", "great", "nice",
+                                   "lovely", "helpful", "wonderful", "brilliant", "good", "awesome", "amazing", "kind"})
+
 # questions about wishes and plans are conversation even though they are polite in form
 WISH_QUESTIONS: tuple[tuple[str, ...], ...] = (
     ("would", "you", "like"), ("do", "you", "want"), ("would", "you", "want"), ("do", "you", "like"),
@@ -205,7 +215,11 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     for verb in ("think", "reckon", "suppose", "guess")
     for that in ((), ("that",))
     for modal in ("could", "can", "would", "might")
-}, key=lambda p: (-len(p), p)))
+} | {  # a hedge before an order: "I guess just turn right then", "I suppose go to the kitchen"
+    (subject, verb, *just) for subject in ("i", "we") for verb in ("guess", "suppose", "reckon")
+    for just in ((), ("just",))
+} | {("awfully",), ("terribly",), ("ever", "so")},  # "would you mind awfully picking up the cup"
+    key=lambda p: (-len(p), p)))
 
 POLITE_BY_FIRST = by_first(POLITE)
 
@@ -513,6 +527,9 @@ GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out"
 RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("i", "am", "kidding"),
     ("just", "joking"), ("only", "joking"), ("joking",), ("im", "joking"), ("i", "am", "joking"), ("jk",),
+    *((*subject, *adverb, word) for subject in (("im",), ("i", "am"), ("i", "was"))
+      for adverb in ((), ("only",), ("just",)) for word in ("joking", "kidding", "messing", "teasing")
+      if subject != ("im",) or adverb),
     ("forget", "it"), ("forget", "that"), ("forget", "everything"), ("forget", "all", "that"), ("cancel", "that"),
     ("on", "second", "thought"), ("on", "second", "thoughts"), ("dont", "bother"), ("nah",), ("no", "dont"),
     ("i", "take", "that", "back"), ("belay", "that"), ("as", "you", "were"), ("dont",), ("do", "not"),

@@ -7,16 +7,18 @@ by that family through ``ParseState.read_as``).
 from __future__ import annotations
 
 from ..intents import NAVIGATE
-from ..numbers import LENGTH, read_quantity
+from ..numbers import LENGTH, read_quantity, word_value
 from .amounts import read_move, read_turn_terms
 from .lexicon import (
     ALL_VERBS,
     BOUNDARY,
+    DETERMINERS,
     DIRECTIONS,
     HOME,
     OBJECT_PRONOUNS,
     SURFACES,
     TO_WORDS,
+    TRAILING,
 )
 from .nouns import read_go, read_noun_phrase, read_place
 from .state import Found, ParseState, Result, may_end
@@ -132,7 +134,49 @@ def _motion_onwards(s: ParseState, verb: str, j: int, t: str) -> Result:
         return read_turn_terms(s, j, verb)
     if verb == "go" and t in ("ahead", "on", "forth") and may_end(s, j + 1):
         return None  # "go ahead", "go on": permission, not a direction
+    if verb in _BARE_PLACE_VERBS and _may_name_a_place(s, t):
+        return _bare_place(s, j)
     return read_move(s, j, verb, default_back=verb in ("back", "retreat", "reverse"))
+
+
+# verbs that may name a place with no "to", as people short of words or in a hurry say it ("go
+# kitchen", "head station two"); the place is resolved against the map like any other, so a word
+# that names none ("go crazy") is asked about, never walked to
+_BARE_PLACE_VERBS = frozenset({"go", "head", "walk", "run", "hurry", "rush", "drive"})
+_HOW_NOT_WHERE = frozenset({"faster", "slower", "quicker", "closer", "further", "farther", "crazy", "wild", "quiet",
+                            "slow", "fast", "quick", "easy", "alone", "together", "outside", "inside", "away", "first",
+                            "last", "again", "already", "instead", "nuts", "mad", "live", "off", "out", "up", "down"})
+
+
+def _bare_place(s: ParseState, j: int) -> Result:
+    """A place named with no "to" at ``j``, up to a pause or the next verb ("go kitchen", "you go
+    bathroom now"); a verb right after it is the next command, said with no "and" ("go kitchen
+    take apple")."""
+    j += s.at(j) in ("the", "your", "our")  # "go the kitchen"
+    e = j
+    while e < s.n and e < j + 4 and s.toks[e] not in s.stop_words and s.toks[e] not in ALL_VERBS:
+        e += 1
+    if any((q := read_quantity(s.toks, k)) is not None and q.dimension for k in range(j, e)):
+        return None  # "go backside one metre": an amount, so a move the grammar did not read, no place
+    place = read_place(s, list(s.toks[j:e]))
+    if place is None or not (may_end(s, e) or s.at(e) in ALL_VERBS):
+        return None
+    if may_end(s, e):
+        return read_go(s, place, e)
+    more = s.read_clause(s, e)
+    if more is None:
+        return None
+    specs, end = more
+    return [(NAVIGATE, place, 0.0, 0.0, 0.0), *specs], end
+
+
+def _may_name_a_place(s: ParseState, t: str) -> bool:
+    """Whether ``t``, right after a motion verb, may start a place's name: a word, and none the
+    grammar knows as something else (a direction, a verb, an amount, an adverb or a filler)."""
+    return (t.isalpha() and (t not in DETERMINERS or t in ("the", "your", "our")) and t not in s.stop_words
+            and t not in ALL_VERBS and t not in DIRECTIONS
+            and t not in TRAILING and t not in HOME and t not in _HOW_NOT_WHERE and word_value(t) is None
+            and not t.endswith("ly"))
 
 
 def read_guide(s: ParseState, i: int) -> Result:

@@ -114,6 +114,8 @@ def skip_rest(s: ParseState, j: int) -> int:
         if t in CONDITIONS:
             condition = True
         elif not condition:
+            if t == "as" and s.at(j + 1) == "soon" and s.at(j + 2) == "as" and s.at(j + 3) in ("you", "youre", "youve"):
+                break  # "pick up the cup as soon as you get to the kitchen": a subordinate clause next
             if t in CORRECTIONS_BY_FIRST and s.phrase_at(j, CORRECTIONS_BY_FIRST) is not None:
                 break  # "go to the kitchen no the bathroom"
             if t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
