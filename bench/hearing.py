@@ -23,6 +23,8 @@ Figures, each beside an anchor timed in the same run:
   at 10 dB SNR (goals 95 %, 90 %); anchor: the same recogniser **without** the vocabulary prompt,
   which is what the prompt buys;
 - ``false_commands``: intents heard in non-command audio (goal 0), anchor the same without prompt;
+- ``false_commands.said_to_others``: intents heard in commands said to someone else, several
+  with names that start like the robot's ("Hey Steve, go to the kitchen"; goal 0);
 - ``barge_in.p99``: a "Hey Stuart, stop" said over the robot's voice -> the tts stop command,
   from the end of the stop's audio; anchor: the silence the segmenter waits for while the robot
   talks (``barge_in_silence_s``, a constant), the wait no recogniser can avoid; goal: ratio
@@ -94,6 +96,20 @@ def corpus(markers: dict[str, str], objects: tuple[str, ...], seed: int = 3) -> 
     utterances = commands + talk
     rng.shuffle(utterances)
     return utterances
+
+
+# people in a lab, several with names that start like the robot's ("Steve", "Stella"): what is said
+# to them must not move the robot, however close the name sounds
+OTHER_NAMES = ("Steve", "Stella", "Stan", "Stacy", "Sarah", "Stephen", "Susan", "Sue", "Tom", "Sam", "team", "guys")
+
+
+def said_to_others(markers: dict[str, str], objects: tuple[str, ...], seed: int = 5) -> list[str]:
+    """Commands said to someone else, greeted ("Hey Steve, go to the kitchen") or named alone
+    ("Stella, pick up the cup"): talk, as far as the robot is concerned."""
+    rng = random.Random(seed)
+    places = [n.replace("_", " ") for n in markers] + [d for d in markers.values() if d]
+    asks = [f"go to the {p}" for p in places] + [f"pick up the {o}" for o in objects] + ["turn left", "stop"]
+    return [f"{'Hey ' if k % 2 == 0 else ''}{name}, {rng.choice(asks)}" for k, name in enumerate(OTHER_NAMES * 2)]
 
 
 def _speak_all(texts: list[str], folder: Path) -> list[Any]:
@@ -181,6 +197,7 @@ def run(quick: bool = False) -> list[Result]:
     noisy = [add_noise(c, 10.0, seed=k) for k, c in enumerate(clips)]
     (got, latency, rtf), (bare, bare_latency, _) = _hear_both(recogniser, clips, vocabulary, parser, resolver)
     (got_noisy, _, _), (bare_noisy, _, _) = _hear_both(recogniser, noisy, vocabulary, parser, resolver)
+    others = _to_others(recogniser, vocabulary, parser, resolver, quick)
     rss_after = _rss_mb()
     acc, false = _score(truth, got, is_command)
     acc_noisy, false_noisy = _score(truth, got_noisy, is_command)
@@ -208,6 +225,9 @@ def run(quick: bool = False) -> list[Result]:
         Result(f"{NAME}.false_commands", float(false + false_noisy), "intents", None, Bound(0, "=="),
                note=f"intents heard in the {n_talk} non-commands, clean + 10 dB SNR; no anchor ratio (a count that "
                     f"should be 0): the same recogniser without the vocabulary prompt heard {false_bare} (clean)"),
+        Result(f"{NAME}.false_commands.said_to_others", float(others[0]), "intents", None, Bound(0, "=="),
+               note=f"intents heard in {others[2]} commands said to someone else ('Hey Steve, go to the kitchen', "
+                    f"'Stella, pick up the cup'), clean + 10 dB SNR; without the vocabulary prompt: {others[1]}"),
         Result(f"{NAME}.barge_in.p99", percentile(barge, 99), "s",
                Anchor("silence the segmenter waits for while the robot talks", SegmenterOptions().barge_in_silence_s,
                       timed=False), GOAL_BARGE,
@@ -216,6 +236,19 @@ def run(quick: bool = False) -> list[Result]:
         Result(f"{NAME}.memory", rss_after, "MB", Anchor("the same process before the model was loaded", rss_before),
                note="peak resident memory with tiny.en (and pocketsphinx for the grammar engine) loaded and used"),
     ]
+
+
+def _to_others(recogniser: Any, vocabulary: Any, parser: Any, resolver: Any, quick: bool) -> tuple[int, int, int]:
+    """(intents heard, the same without the vocabulary prompt, clips) for :func:`said_to_others`,
+    each clean and at 10 dB SNR."""
+    from stuart_bt.hearing.audio import add_noise
+
+    texts = said_to_others(resolver.markers, resolver.objects)[:2 if quick else None]
+    with tempfile.TemporaryDirectory(prefix="stuart-bench-hearing-") as tmp:
+        clips = _speak_all(texts, Path(tmp))
+    clips += [add_noise(c, 10.0, seed=100 + k) for k, c in enumerate(clips)]
+    (got, _, _), (bare, _, _) = _hear_both(recogniser, clips, vocabulary, parser, resolver)
+    return sum(len(g) for g in got), sum(len(b) for b in bare), len(clips)
 
 
 def barge_in(recogniser: Any, vocabulary: Any, trials: int) -> list[float]:

@@ -61,3 +61,14 @@ def test_two_clear_readings_that_ask_for_different_things_are_rivals():
     assert rival_reading(readings, 0, parser, resolver) == 1
     assert rival_reading([readings[0], readings[2]], 0, parser, resolver) is None  # the same command twice
     assert rival_reading([readings[0], ("Hey Stuart, go to the bathroom.", -0.9)], 0, parser, resolver) is None
+
+
+def test_a_reading_that_greets_someone_else_by_name_makes_the_robot_ask_who_was_meant(lab):
+    from stuart_bt.language.readings import ADDRESSEE_MARGIN, rival_reading
+
+    said = [("hey Stuart, pick up the book.", -0.28), ("hey Sarah, pick up the book.", -0.45)]
+    assert rival_reading(said, 0, *lab) == 1  # further behind than a command rival may be, still asked
+    far = [said[0], ("hey Sarah, pick up the book.", -0.29 - ADDRESSEE_MARGIN)]
+    assert rival_reading(far, 0, *lab) is None
+    unsure = [said[0], ("hey, Stuart, pick up the book.", -0.3), ("hey sir, pick up the book.", -0.31)]
+    assert rival_reading(unsure, 0, *lab) is None  # the robot's name again, and no name at all

@@ -28,6 +28,9 @@ if TYPE_CHECKING:
     import numpy as np
 
 
+MOST_VARIANTS = 4  # the CMU dictionary's words have up to four pronunciations ("word(2)" ...)
+
+
 class GrammarRecogniser:
     """The grammar engine: :meth:`hear` gives the grammar tokens of the command it heard, or
     ``[]`` when its search reached no end of a sentence. Never an engine on its own: it hears
@@ -65,6 +68,18 @@ class GrammarRecogniser:
     def pronunciation(self, word: str) -> str | None:
         """The phones the engine hears ``word`` as (the dictionary's or :mod:`.pronounce`'s)."""
         return pronounce(word, self._decoder.lookup_word)
+
+    def pronunciations(self, word: str) -> list[str]:
+        """Every way the dictionary says ``word`` ("stuart": S T UW ER T, S T Y UW ER T, S T AO R
+        T), or the one :mod:`.pronounce` builds; none for a word with no letters it knows."""
+        known = self._decoder.lookup_word(word.lower())
+        if not known:
+            built = self.pronunciation(word)
+            return [built] if built else []
+        ways = [known]
+        while len(ways) < MOST_VARIANTS and (more := self._decoder.lookup_word(f"{word.lower()}({len(ways) + 1})")):
+            ways.append(more)
+        return ways
 
     def _search(self, vocabulary: Vocabulary) -> tuple[str, re.Pattern[str]] | None:
         """The search for ``vocabulary`` (made the first time), over the phrases it can say; None

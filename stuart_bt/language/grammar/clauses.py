@@ -245,6 +245,9 @@ def read_clause(s: ParseState, i: int) -> Result:
         return _stop_phrase(s, i, sp)
     if t in ("dont", "never") or (t == "do" and s.at(i + 1) == "not") or t == "not":
         return None  # a negated command is no command
+    if t in GESTURES_BY_FIRST and (g := s.phrase_at(i, GESTURES_BY_FIRST)) is not None and len(g) > 1 and may_end(
+            s, i + len(g)):
+        return _idiom_or_gesture(s, i)  # "face wave": a gesture's whole name, though it opens with a verb
     handler = _DISPATCH.get(t)
     if handler is not None:
         got = handler(s, i)
