@@ -55,7 +55,8 @@ EXPECTED = [
       for figure in ("rss", "fds", "leftover_processes")),
     "soak.ros_flood.good_command_latency",
     *(f"hearing.{figure}" for figure in ("latency.p50", "latency.p99", "rtf", "accuracy.clean", "accuracy.snr10",
-                                         "false_commands", "barge_in.p99", "memory")),
+                                         "false_commands", "false_commands.said_to_others", "barge_in.p99",
+                                         "memory")),
 ]
 
 

@@ -155,3 +155,20 @@ def test_words_said_to_someone_else_stay_talk(recogniser, resolver, tmp_path, sn
         acted = _meant(heard.text, parser, resolver) if is_speech(heard) else []
         print(f"{said!r} ({snr_db or 'no'} dB SNR): heard {heard.text!r} -> {acted}")
         assert acted == []
+
+
+@pytest.mark.parametrize(("heard", "someone_else"), [
+    ("hey Steve, go to the kitchen.", True),
+    ("Hi Sarah, pick up the cup.", True),
+    ("Stacey, go to the workbench.", True),
+    ("hey Stewart, go to the kitchen.", False),  # the robot's name spelled another way
+    ("Hey Stuart, go to the kitchen.", False),
+    ("Steward, stop.", False),
+    ("hey guys, go to the kitchen.", False),  # not written as a name
+    ("Sorry, go to the kitchen.", False),  # a word a sentence opens with
+    ("I think Steve went to the kitchen.", False),  # no one addressed
+])
+def test_a_name_written_as_someone_elses_is_told_from_the_robots_by_its_sounds(dictionary, heard, someone_else):
+    from stuart_bt.hearing.wake_repair import said_to_someone_else
+
+    assert said_to_someone_else(heard, "Stuart", dictionary) is someone_else

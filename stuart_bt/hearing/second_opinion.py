@@ -74,7 +74,7 @@ class SecondOpinion:
     def transcribe(self, samples: np.ndarray, vocabulary: Vocabulary | None = None) -> Transcript:
         heard = self.whisper.transcribe(samples, vocabulary)
         if (vocabulary is None or not is_speech(heard) or heard.audio_s > WINDOW_S
-                or said_to_someone_else(heard.text, vocabulary.name)):
+                or said_to_someone_else(heard.text, vocabulary.name, self.grammar.pronunciations)):
             return replace(heard, engine=self.name)
         own = heard.avg_logprob  # whisper's belief in its own best reading: every correction is held to it
         heard = self._wake_repaired(heard, vocabulary)

@@ -39,6 +39,9 @@ MOST_HEAD_WORDS = 3  # "face to earth," / "taste you at,": the wake phrase is he
 # from it ("case to it" 0.21, "face to" 0.36, "thanks to it" 0.5); everyday openings are
 # further ("okay team" 0.79, "in case you" 0.86, "listen everyone" 1.36).
 SOUND_TOLERANCE = 0.5
+# a name heard within this distance a phone of the robot's is the robot's: "stewart" (0), "steward"
+# (0.1); "Steve" (0.5) and "Stan" are not
+SAME_NAME_TOLERANCE = 0.2
 MOST_SAYINGS = 8  # pronunciations of one phrase compared (the dictionary gives up to three a word)
 _PAUSES = ",.;:!?"
 
@@ -106,18 +109,33 @@ def wake_repaired(text: str, name: str, pronounce: Pronounce) -> str | None:
     return f"hey {name}, {rest}" if rest else None
 
 
-def said_to_someone_else(text: str, name: str) -> bool:
+def said_to_someone_else(text: str, name: str, pronounce: Pronounce) -> bool:
     """Did whisper hear someone other than the robot addressed: a greeting and a name written
     as a name ("hey Steve, ...", "Hi Sarah ..."), or a name alone before a pause ("Stacey, go to
     the kitchen")? Then no engine's correction may make it the robot's name: the prompt and the
     grammar engine both lean to "Stuart", and "hey Steve" trailed "hey Stuart" by only 0.74 per
-    token in whisper's own score (docs/hearing.md)."""
+    token in whisper's own score (docs/hearing.md). The robot's name spelled another way
+    ("Stewart", "Steward") is the robot's."""
     words = text.split()
     keys = [" ".join(spoken(w)) for w in words[:2]]
     at = 1 if keys and keys[0] in GREETINGS else 0
-    if at >= len(words) or keys[at] == name.lower() or not words[at][:1].isupper():
+    if at >= len(words) or not words[at][:1].isupper() or not (at == 1 or words[at].endswith(tuple(_PAUSES))):
         return False
-    return at == 1 or words[at].endswith(tuple(_PAUSES))
+    return keys[at] not in _OPENING_WORDS and not _sounds_like(keys[at], name, pronounce)
+
+
+# words a sentence often opens with before a pause, written with a capital for that alone
+_OPENING_WORDS = frozenset({"sorry", "right", "please", "yes", "yeah", "no", "well", "so", "now", "wait", "thanks",
+                            "alright", "listen", "look", "actually", "oh", "um", "uh", "great", "good", "cool", "sure",
+                            "first", "then", "next", "and", "but", "also", "again", "quick", "quickly"})
+
+
+def _sounds_like(word: str, name: str, pronounce: Pronounce) -> bool:
+    """Whether ``word`` is ``name`` by its phones, within :data:`SAME_NAME_TOLERANCE` a phone."""
+    if word == name.lower():
+        return True
+    heard, meant = _phones(word, pronounce), _phones(name, pronounce)
+    return any(phone_distance(h, m) <= SAME_NAME_TOLERANCE * len(m) for h in heard for m in meant)
 
 
 def _phones(phrase: str, pronounce: Pronounce) -> list[list[str]]:
