@@ -85,16 +85,12 @@ class SecondOpinion:
         readings = heard.readings()
         if not corrected or corrected in (text for text, _ in readings):
             return replace(heard, engine=self.name, seconds=heard.seconds + self.grammar.seconds)
-        ours, theirs = self.whisper.score([corrected, heard.text], vocabulary)
-        score = round(heard.avg_logprob + ours - theirs, 4)  # on the scale of whisper's own readings
+        score = self._score(heard, corrected, vocabulary)
         seconds = heard.seconds + self.grammar.seconds + self.whisper.last_score_s
         if own - score > CORRECTION_MARGIN:  # whisper finds it far less likely: kept, never first
             ranked = sorted([*heard.alternatives, (corrected, score)], key=lambda r: -r[1])
             return replace(heard, engine=self.name, alternatives=tuple(ranked), seconds=seconds)
-        confidence = math.exp(score) * (1.0 - heard.no_speech)  # whisper's belief in the corrected words
-        return replace(heard, text=corrected, avg_logprob=score, confidence=confidence, seconds=seconds,
-                       alternatives=((heard.text, round(heard.avg_logprob, 4)), *heard.alternatives),
-                       engine=self.name)
+        return replace(_heard_as(heard, corrected, score, seconds), engine=self.name)
 
     def _wake_repaired(self, heard: Transcript, vocabulary: Vocabulary) -> Transcript:
         """``heard`` with the wake phrase put back (:mod:`.wake_repair`) when whisper finds that
@@ -103,19 +99,30 @@ class SecondOpinion:
         repaired = wake_repaired(heard.text, vocabulary.name, self.grammar.pronunciations)
         if repaired is None:
             return heard
-        ours, theirs = self.whisper.score([repaired, heard.text], vocabulary)
-        score = round(heard.avg_logprob + ours - theirs, 4)
+        score = self._score(heard, repaired, vocabulary)
         seconds = heard.seconds + self.whisper.last_score_s
         if heard.avg_logprob - score > REPAIR_MARGIN:
             return replace(heard, seconds=seconds)
-        return replace(heard, text=repaired, avg_logprob=score, confidence=math.exp(score) * (1.0 - heard.no_speech),
-                       alternatives=((heard.text, round(heard.avg_logprob, 4)), *heard.alternatives), seconds=seconds)
+        return _heard_as(heard, repaired, score, seconds)
+
+    def _score(self, heard: Transcript, text: str, vocabulary: Vocabulary) -> float:
+        """Whisper's average log probability of ``text`` against the sound it heard as
+        ``heard``, on the scale of ``heard``'s own readings (forced decoding of both)."""
+        ours, theirs = self.whisper.score([text, heard.text], vocabulary)
+        return round(heard.avg_logprob + ours - theirs, 4)
 
     def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
         pattern = self._matchers.get(vocabulary)
         if pattern is None:
             pattern = self._matchers[vocabulary] = matcher(vocabulary)
         return any(pattern.fullmatch(normalise(text)) for text, _ in heard.readings())
+
+
+def _heard_as(heard: Transcript, text: str, score: float, seconds: float) -> Transcript:
+    """``heard`` with ``text`` (scored ``score``) as the reading heard, whisper's own readings
+    after it, and whisper's belief in those words as the confidence."""
+    return replace(heard, text=text, avg_logprob=score, confidence=math.exp(score) * (1.0 - heard.no_speech),
+                   alternatives=((heard.text, round(heard.avg_logprob, 4)), *heard.alternatives), seconds=seconds)
 
 
 def splice(heard: str, command: list[str], vocabulary: Vocabulary) -> str:

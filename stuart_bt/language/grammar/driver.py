@@ -484,6 +484,9 @@ def _reason_at(toks: list[str], start: int, end: int) -> int:
     """Where a reason or a purpose starts among the words after a command ("because we want to
     see your back", "so that everyone can see", "so we can see your back"), else ``end``: it says
     why, not what, so its words are talk, never unused words that make the robot ask."""
+    span = toks[start:end]
+    if _REASONS.isdisjoint(span) and "so" not in span:  # the common case, without a Python loop
+        return end
     for k in range(start, end):
         t = toks[k]
         if t in _REASONS or (t == "so" and k + 1 < end and toks[k + 1] in _PURPOSE_SUBJECTS):
@@ -492,6 +495,7 @@ def _reason_at(toks: list[str], start: int, end: int) -> int:
 
 
 _REASONS = frozenset({"because", "cause", "cos", "coz", "cuz"})
+
 _PURPOSE_SUBJECTS = frozenset({"that", "we", "i", "you", "they", "everyone", "everybody", "people", "he", "she",
                                "the", "our", "my", "visitors", "guests", "kids", "children"})
 

@@ -525,8 +525,9 @@ GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out"
 # Taking back what was just said: everything asked before it in the utterance is dropped
 # ("go to the kitchen, just kidding"; "walk to the kitchen and ..., I'm joking").
 RETRACTIONS: tuple[tuple[str, ...], ...] = (
-    ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("i", "am", "kidding"),
-    ("just", "joking"), ("only", "joking"), ("joking",), ("im", "joking"), ("i", "am", "joking"), ("jk",),
+    ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("just", "joking"), ("only", "joking"),
+    ("joking",), ("im", "joking"), ("jk",),
+    # "i am joking", "I'm only kidding", "I was just teasing" ("im messing" is below, "im teasing" is none)
     *((*subject, *adverb, word) for subject in (("im",), ("i", "am"), ("i", "was"))
       for adverb in ((), ("only",), ("just",)) for word in ("joking", "kidding", "messing", "teasing")
       if subject != ("im",) or adverb),

@@ -159,11 +159,11 @@ def _bare_place(s: ParseState, j: int) -> Result:
     if any((q := read_quantity(s.toks, k)) is not None and q.dimension for k in range(j, e)):
         return None  # "go backside one metre": an amount, so a move the grammar did not read, no place
     place = read_place(s, list(s.toks[j:e]))
-    if place is None or not (may_end(s, e) or s.at(e) in ALL_VERBS):
+    if place is None:
         return None
     if may_end(s, e):
         return read_go(s, place, e)
-    more = s.read_clause(s, e)
+    more = s.read_clause(s, e) if s.at(e) in ALL_VERBS else None
     if more is None:
         return None
     specs, end = more
