@@ -63,6 +63,16 @@ def test_two_clear_readings_that_ask_for_different_things_are_rivals():
     assert rival_reading([readings[0], ("Hey Stuart, go to the bathroom.", -0.9)], 0, parser, resolver) is None
 
 
+def test_two_readings_naming_the_same_place_or_thing_differently_are_no_rivals(lab):
+    from stuart_bt.language.readings import rival_reading
+
+    place = [("hey Stuart, go to the Humanoid corner.", -0.2), ("hey Stuart, go to the Humanoids corner.", -0.25)]
+    thing = [("hey Stuart, look for the screwdriver.", -0.2), ("hey Stuart, look for this crew driver.", -0.25)]
+    assert rival_reading(place, 0, *lab) is None and rival_reading(thing, 0, *lab) is None
+    other = [place[0], ("hey Stuart, go to the Humanoids corner and wave.", -0.25)]
+    assert rival_reading(other, 0, *lab) == 1  # the same place, but more asked of it
+
+
 def test_a_reading_that_greets_someone_else_by_name_makes_the_robot_ask_who_was_meant(lab):
     from stuart_bt.language.readings import ADDRESSEE_MARGIN, rival_reading
 
@@ -70,5 +80,7 @@ def test_a_reading_that_greets_someone_else_by_name_makes_the_robot_ask_who_was_
     assert rival_reading(said, 0, *lab) == 1  # further behind than a command rival may be, still asked
     far = [said[0], ("hey Sarah, pick up the book.", -0.29 - ADDRESSEE_MARGIN)]
     assert rival_reading(far, 0, *lab) is None
+    unknown = [("hey Stuart, let's pick up the remote.", -0.43), ("hey Sarah, let's pick up the remote.", -0.56)]
+    assert rival_reading(unknown, 0, *lab) == 1  # a thing the robot would ask about: still, who was it said to?
     unsure = [said[0], ("hey, Stuart, pick up the book.", -0.3), ("hey sir, pick up the book.", -0.31)]
     assert rival_reading(unsure, 0, *lab) is None  # the robot's name again, and no name at all

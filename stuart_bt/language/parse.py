@@ -10,7 +10,8 @@ This is the contract the CLI prints and other programs script against::
   robot was not spoken to, so there is nothing to answer either);
 - wake phrase and no command in what follows: ``conversational`` true (the text goes to the
   conversation side: "Hey Stuart, what can you pick up?");
-- ``command`` is the text after the wake phrase, as written;
+- ``command`` is the text after the wake phrase, as written, less any part said to someone
+  else in the room ("..., Anna, can you follow him?", :mod:`.asides`);
 - ``coverage``: which words of ``command`` the intents came from, which content words no clause
   used, which were conversation, and any text past the length limit (never read);
 - ``doubt``: why the robot should ask before acting on ``intents`` (:mod:`.doubt`); empty for a
@@ -28,6 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..core.jsonfile import to_json
+from .asides import said_to_the_robot, turned_to_the_robot
 from .doubt import Doubt, Limits, doubts
 from .grammar import Coverage, Defaults, Grammar, coverage
 from .grammar.driver import TALK, Reading
@@ -103,10 +105,20 @@ class Parser:
         """The result for one utterance (never raises on text: any string gives a result)."""
         wake = self.wake_match(utterance)
         if not wake.woke:
+            turned = turned_to_the_robot(utterance, self._is_name) if "," in utterance else None
+            if turned is not None:  # "Sam, grab the extinguisher - Stuart, stop where you are"
+                return self._command(utterance, True, turned)
             if not self.require_wake:
                 return self._command(utterance, False, utterance.strip())
             return ParseResult(utterance)
-        return self._command(utterance, True, wake.command)
+        command = wake.command
+        if "," in command:  # "go to the reading room. Anna, can you follow him?": Anna's part is not ours
+            command = said_to_the_robot(command, self._is_name)
+        return self._command(utterance, True, command)
+
+    def _is_name(self, word: str) -> bool:
+        """Whether a word (lower case) is the robot's name as the wake filter hears names."""
+        return self.wake_filter.distance(word) <= self.wake_filter.tolerance
 
     def _command(self, utterance: str, woke: bool, command: str) -> ParseResult:
         if not command:

@@ -58,16 +58,23 @@ def choose_reading(readings: Sequence[tuple[str, float]], parser: Parser, resolv
 def rival_reading(readings: Sequence[tuple[str, float]], chosen: int, parser: Parser, resolver: Resolver,
                   margin: float = READING_MARGIN) -> int | None:
     """Index of another reading, within ``margin`` of the chosen one, that is a clear command
-    asking for something else ("go to the kitchen" / "go to the bathroom"): the robot heard two
-    things and should ask which. None when the chosen reading has no such rival."""
-    if len(readings) < 2 or not is_clear_command(readings[chosen][0], parser, resolver):
+    asking for something else ("go to the kitchen" / "go to the bathroom"), or within
+    :data:`ADDRESSEE_MARGIN` one that greets someone else by name (then even a chosen reading the
+    robot would only ask about, "hey Stuart, pick up the remote", was maybe not said to it): the
+    robot heard two things and should ask which. None when the chosen reading has no such rival."""
+    if len(readings) < 2:
         return None
-    mine = _asked(readings[chosen][0], parser)
+    said = readings[chosen][0]
+    clear = is_clear_command(said, parser, resolver)
+    if not clear and not parser.parse(said).intents:
+        return None
+    mine = _asked(said, parser, resolver) if clear else []
     for index, (text, score) in enumerate(readings):
         behind = abs(score - readings[chosen][1])
         if index == chosen or behind > max(margin, ADDRESSEE_MARGIN):
             continue
-        if behind <= margin and is_clear_command(text, parser, resolver) and _asked(text, parser) != mine:
+        if clear and behind <= margin and is_clear_command(text, parser, resolver) and (
+                _asked(text, parser, resolver) != mine):
             return index
         if _greets_someone_else(text, parser):  # "hey Stuart, ..." or "hey Sarah, ...": who was it said to?
             return index
@@ -82,5 +89,13 @@ def _greets_someone_else(text: str, parser: Parser) -> bool:
             and not parser.parse(text).wake)
 
 
-def _asked(text: str, parser: Parser) -> list[tuple[str, str, float, float, float]]:
-    return [(i.action, i.target, round(i.x, 2), round(i.y, 2), round(i.yaw, 2)) for i in parser.parse(text).intents]
+def _asked(text: str, parser: Parser, resolver: Resolver) -> list[tuple[str, str, float, float, float]]:
+    """What a reading asks the robot to do, its targets as they resolve: "the Humanoids corner"
+    and "the Humanoid corner", or "this crew driver" and "the screwdriver", ask for the same
+    thing, so two readings that differ only so are no rivals."""
+    intents = parser.parse(text).intents
+    asked = []
+    for intent, resolved in zip(intents, resolver.resolve_all(intents), strict=True):
+        name = resolved.name if resolved is not None and resolved.ok else intent.target
+        asked.append((intent.action, name or "", round(intent.x, 2), round(intent.y, 2), round(intent.yaw, 2)))
+    return asked

@@ -203,6 +203,8 @@ def opens_conversation(s: ParseState, i: int) -> bool:
         return True
     if t in MODALS and i + 1 < n and toks[i + 1] != "you":
         return True
+    if i + 1 < n and (toks[i + 1] in AUX or toks[i + 1] in _REPORTED) and t not in ALL_VERBS and t not in BOUNDARY:
+        return True  # "..., Jess is filming", "Ana said you'd go ...": a name and its verb, a statement
     if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
         return True
     if s.contracted and any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY
@@ -221,6 +223,14 @@ def _asks_a_wish(s: ParseState, i: int) -> bool:
     return polite is None or len(polite) <= len(wish)
 
 
+# verbs that tell what someone said or thought ("Ana said you'd go to the kitchen"): a report
+_REPORTED = frozenset({"said", "says", "told", "tells", "asked", "asks", "thinks", "thought", "wants", "wanted",
+                       "reckons", "mentioned", "promised", "suggested"})
+
+# personal pronouns: after a verb they open a new sentence rather than make the verb a noun
+_PERSONAL = frozenset({"you", "we", "i", "they", "he", "she", "it", "everyone", "everybody"})
+
+
 def read_clause(s: ParseState, i: int) -> Result:
     """One clause at ``i`` (after a connector): polite openers, then a verb phrase, or one of the
     verbless forms (stop phrases, "about face", a gesture name, an elliptic direction or noun
@@ -236,7 +246,8 @@ def read_clause(s: ParseState, i: int) -> Result:
     if i >= n:
         return None
     t = toks[i]
-    if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY):
+    if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY and s.at(
+            i + 1) not in _PERSONAL):  # ("stop you are about to hit the wall": a new sentence, no pause written)
         return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
     if t in VISIT_VERBS and s.at(i + 1) == "by" and (got := read_visit_by(s, i)) is not None:
         return got
@@ -291,6 +302,8 @@ def _verbless(s: ParseState, i: int) -> Result:
             return _another_place(s, i + 1)
     if last == NAVIGATE and word_value(t) is not None and (num := numbered_place(s.last_place)) and may_end(s, i + 1):
         return [(NAVIGATE, f"{num[0]} {t}", 0.0, 0.0, 0.0)], i + 1  # "go to station 1, then 2"
+    if t in _ABOUT and last in (MOVE, TURN) and (s.at(i + 1)[:1].isdigit() or s.at(i + 1) in NUMBER_STARTS):
+        return _another_amount(s, i + 1)  # "turn left, like ninety degrees": said roughly
     if t in DIRECTIONS or t in ROTATIONS or t in ("anti", "counter") or t[0].isdigit() or t in NUMBER_STARTS or (
             t in ("to", "by") and s.at(i + 1) in ("the", "your", "left", "right")):
         return _another_amount(s, i) if s.first or last in (MOVE, TURN, TURN_AROUND) else None
@@ -301,9 +314,14 @@ def _verbless(s: ParseState, i: int) -> Result:
 
 
 _ORDER_WORDS = by_first(sorted({("now",), ("go",), ("please",), ("quick",), ("quickly",), ("asap",), ("pronto",),
-                                 ("you", "go"), ("off", "you", "go"), ("right", "now"), ("chop", "chop")},
+                                 ("you", "go"), ("off", "you", "go"), ("right", "now"), ("chop", "chop"),
+                                 ("with", "you"), ("we", "go")},
                                 key=lambda p: (-len(p), p)))
 
+
+# words before "to" in a verbless order ("off to the kitchen with you", "on to station five", "over
+# to the workbench"): they say "go", as "to" alone does
+_ON_TO = frozenset({"off", "on", "onwards", "onward", "over", "across", "along", "straight"})
 
 _ORDER_ENDS = HARD_STOPS | {"and", "then"}  # "to the kitchen!", "to the kitchen and then wave"
 
@@ -311,8 +329,9 @@ _ORDER_ENDS = HARD_STOPS | {"and", "then"}  # "to the kitchen!", "to the kitchen
 def _bare_order(s: ParseState, i: int) -> Result:
     """A place said as an order with no verb, first in the command: "kitchen, now", "station
     four, go", "to the workbench you go", "to the 3D printers!". Alone, a noun is no order
-    ("kitchen?" asks about it); "to" and a place must end the sentence."""
-    j = i + 1 if s.toks[i] == "to" else i
+    ("kitchen?" asks about it); "to" and a place must end the sentence ("off to the kitchen with
+    you", "on to station five now")."""
+    j = i + 2 if s.toks[i] in _ON_TO and s.at(i + 1) == "to" else i + 1 if s.toks[i] == "to" else i
     if j >= s.n or s.toks[j] in ALL_VERBS or s.toks[j] in SUBJECTS and s.toks[j] not in DETERMINERS:
         return None  # "to be honest, ...", "to me it looks fine"
     words, e = read_noun_phrase(s, j)
@@ -350,6 +369,10 @@ def _another_place(s: ParseState, i: int) -> Result:
     if target is not None and may_end(s, j) and s.at(j) not in OBJECT_PRONOUNS:  # "(sorry) to bother you"
         return [(NAVIGATE, target, 0.0, 0.0, 0.0)], j
     return None
+
+
+# words that say an amount is rough, before it ("like ninety degrees", "about two metres")
+_ABOUT = frozenset({"like", "about", "around", "roughly", "approximately", "approx", "maybe", "say", "some"})
 
 
 def _another_amount(s: ParseState, i: int) -> Result:

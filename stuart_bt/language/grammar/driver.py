@@ -31,20 +31,24 @@ The grammar reports targets as spoken (lower case, determiners removed): "the ch
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import NamedTuple
 
-from ..intents import FIND, NAVIGATE, PICK, STOP, TaskIntent
+from ..intents import FIND, MOVE, NAVIGATE, PICK, STOP, TURN, TaskIntent
 from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
 from .forms import question_tags, retraction_at
 from .lexicon import (
     ALL_VERBS,
+    AUX,
     BODY_PARTS,
     BOUNDARY,
     CONDITIONS,
     COPULA,
     CORRECTIONS_BY_FIRST,
+    DIRECTIONS,
     HARD_STOPS,
     LIST_LABELS,
     MODALS,
@@ -53,6 +57,7 @@ from .lexicon import (
     PAUSE_SPANS_BY_FIRST,
     PLAIN_STOPS,
     RETRACTIONS_BY_FIRST,
+    ROTATIONS,
     SIGN_OFFS_BY_FIRST,
     STOP_PHRASES_BY_FIRST,
     SUBORDINATORS,
@@ -116,7 +121,7 @@ class _CommandReader:
     them ask for (a correction, a reordering, a clause held until the next one is in)."""
 
     __slots__ = ("after_subordinate", "clause_end", "conditional", "correct_at", "dead", "held", "hold", "i", "marks",
-                 "out", "reorder_at", "retract_at", "s", "tagged", "text", "tokens", "toks")
+                 "out", "reorder_at", "retract_at", "s", "tagged", "taken_back", "text", "tokens", "toks")
 
     def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
         self.text, self.tokens = text, tokens
@@ -136,6 +141,7 @@ class _CommandReader:
         self.retract_at: int | None = None  # "go to the kitchen, no.": a correction nothing replaced takes back
         self.conditional = False  # an "if" clause came before a command: the robot cannot check it
         self.after_subordinate = False  # the clause before was "when you get there": a stop after it is a step
+        self.taken_back = False  # everything asked was just taken back: "..., never mind, forget it" says it again
 
     def read(self) -> list[TaskIntent]:
         """The intents, in order; ``marks`` then says which tokens they came from."""
@@ -181,10 +187,11 @@ class _CommandReader:
             self._mark(self.i, self.i + len(signed), USED)
             self.i += len(signed)
             return True
-        taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) and (
-            not self.dead) else 0
+        taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (
+            self.out or self.held or self.taken_back) and not self.dead else 0
         if taken_back:  # "go to the kitchen, just kidding": nothing asked before it stands
             self._forget_all()
+            self.taken_back = True
             self._mark(self.i, self.i + taken_back, USED)
             self.i += taken_back
             return True
@@ -318,16 +325,57 @@ class _CommandReader:
                 self._interjected(start) or s.at(start + 1) in PLAIN_STOPS or self.toks[start] in _CHANGE_OF_MIND):
             self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
+        restated = self._restated(start, j, specs)
+        if restated is not None:  # "turn left, ninety degrees": how far, not a second turn
+            self.out[-1] = restated
+            self._mark(start, j, USED)
+            self.i = self.clause_end = skip_rest(s, j)
+            return
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
         self._mark(start, _condition_at(self.toks, start, j), USED)  # "... until the professor arrives": unused
         self._remember(specs)
         self.i = self.clause_end = skip_rest(s, j)
         why = _reason_at(self.toks, j, self.i)
+        if why == self.i > j and self._remark_at(j):
+            self.dead, self.i = True, j  # "pick up the cup the kids want to see it": a statement run on,
+            return  # no pause written; talk to the end of its sentence
         if why < self.i:  # "turn around so we can see your back", "... because I said so": said, not asked
             self._mark(why, self.i, TALK)
         if specs[-1][1] and s.at(j) in QUALIFIERS and _says_which(self.toks[j:self.i]):
             self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step
+
+    def _restated(self, start: int, end: int, specs: list[Spec]) -> TaskIntent | None:
+        """ "turn left, ninety degrees", "forward, a couple of metres": an amount alone after a
+        pause says how far the move or turn just asked for goes, when that one said no amount.
+        The last intent with that amount (its direction kept), else None (a direction said again,
+        "then", or an amount said before make it another step: "turn left, then ninety degrees")."""
+        if len(specs) != 1 or not self.out or self.toks[start - 1] != ",":
+            return None
+        act, _, x, y, yaw = specs[0]
+        last = self.out[-1]
+        if act != last.action or act not in (MOVE, TURN) or _names_a_way(self.toks[start:end]):
+            return None
+        if _names_an_amount(tokenize(last.raw_text).toks):
+            return None
+        if act == TURN:
+            return replace(last, yaw=math.copysign(abs(yaw), last.yaw))
+        scale = math.hypot(x, y) / (math.hypot(last.x, last.y) or 1.0)
+        return replace(last, x=last.x * scale, y=last.y * scale)
+
+    def _remark_at(self, j: int) -> bool:
+        """Whether the words at ``j``, right after a command with no connector between, are a
+        statement of their own: they open as one (a subject: "the kids", "we", "Jess is") and
+        have a verb before the next connector ("the kids want ...", "we are late")."""
+        s = self.s
+        if self.toks[j] in _NO_SUBJECT or not opens_conversation(s, j):
+            return False
+        k = j + 1
+        while k < s.n and self.toks[k] not in BOUNDARY:
+            if self.toks[k] in AUX or self.toks[k] in MODALS or self.toks[k] in _REMARK_VERBS:
+                return True
+            k += 1
+        return False
 
     def _opens_sentence(self, i: int) -> bool:
         """Whether ``i`` starts a sentence: the start, after . ! ? ;, or after a comma before any command."""
@@ -385,6 +433,7 @@ class _CommandReader:
         else:
             self.out.extend(made)
         self.retract_at = None
+        self.taken_back = False
         if self.held and made is not self.held:
             self.out.extend(self.held)
             self.held = []
@@ -494,12 +543,34 @@ def _reason_at(toks: list[str], start: int, end: int) -> int:
     return end
 
 
+# words that open a statement but no subject of one after a command ("pick up a cup", "go to the
+# kitchen if ...", "turn left not right")
+_NO_SUBJECT = frozenset({"a", "an", "one", "not", "if", "probably", "because", "although", "though", "unless", "said"})
+
+# verbs of a statement said after a command, besides the auxiliaries ("the kids want to see it")
+_REMARK_VERBS = frozenset({"want", "wants", "wanna", "need", "needs", "love", "loves", "like", "likes", "think",
+                           "thinks", "know", "knows", "got", "get", "gets", "said", "says", "say"})
+
 _REASONS = frozenset({"because", "cause", "cos", "coz", "cuz"})
 
 _PURPOSE_SUBJECTS = frozenset({"that", "we", "i", "you", "they", "everyone", "everybody", "people", "he", "she",
                                "the", "our", "my", "visitors", "guests", "kids", "children"})
 
 _NOT_WHICH = TIMES | BODY_PARTS | {"your"}
+
+
+def _names_a_way(words: Iterable[str]) -> bool:
+    """Whether ``words`` name a direction or a way of turning ("left", "back", "clockwise")."""
+    return any(w in DIRECTIONS or w in ROTATIONS for w in words)
+
+
+def _names_an_amount(words: Iterable[str]) -> bool:
+    """Whether ``words`` name an amount: a number, "a bit", "half", "a couple", a step."""
+    return any(w[:1].isdigit() or w in _AMOUNT_WORDS or word_value(w) is not None for w in words)
+
+
+_AMOUNT_WORDS = frozenset({"bit", "little", "tad", "touch", "smidge", "slightly", "half", "quarter", "couple", "few",
+                           "step", "steps", "pace", "paces", "full", "whole", "all", "way"})
 
 
 def _says_which(words: list[str]) -> bool:

@@ -117,6 +117,8 @@ SIGN_OFFS: tuple[tuple[str, ...], ...] = (
     # hedges that close a sentence without adding to it
     ("you", "know"), ("know", "what", "i", "mean"),
     ("you", "know", "what", "i", "mean"), ("if", "you", "know", "what", "i", "mean"), ("yeah",), ("innit",),
+    # an amount said roughly ("ninety degrees or so", "two metres, give or take")
+    ("or", "so"), ("or", "thereabouts"), ("give", "or", "take"), ("more", "or", "less"),
 )
 
 WH = frozenset({"what", "whats", "where", "wheres", "who", "whos", "why", "whys", "how", "hows", "when", "whens",
@@ -323,7 +325,9 @@ _GESTURE_FORMS: dict[str, tuple[str, ...]] = {
     "right kiss": ("right kiss", "right hand kiss", "kiss with your right hand"),
     "x-ray": ("x ray", "x rays", "xray pose", "x ray pose", "x pose", "x ray gesture"),
     "reject": ("reject", "rejection", "reject gesture", "no gesture", "refusal"),
-    "release arm": ("release arm", "arms down", "hands down", "release arms", "arm down"),
+    "release arm": ("release arm", "arms down", "hands down", "release arms", "arm down", "let go", "let go of me",
+                    *(f"let go of {whose} {part}" for whose in ("my", "the", "your", "his", "her")
+                      for part in ("arm", "hand", "arms", "hands"))),
 }
 
 GESTURE_PHRASES: dict[tuple[str, ...], str] = {tuple(f.split()): name for name, forms in _GESTURE_FORMS.items()

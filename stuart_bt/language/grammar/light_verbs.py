@@ -45,10 +45,15 @@ def read_do(s: ParseState, i: int) -> Result:
     j = _past_audience(s, i + 1)
     k = _past_modifiers(s, j)
     g = s.phrase_at(k, GESTURES_BY_FIRST)
+    if g is None and verb in ("give", "show") and (named := _past_someone(s, j)) > j:
+        k = _past_modifiers(s, named)  # "give Lily a high five", "give the lady a hug"
+        g = s.phrase_at(k, GESTURES_BY_FIRST)
     if g is not None and not (s.toks[k] in ("five",) and verb not in ("give",)):
         return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], skip_gesture_tail(s, k + len(g))
     if verb in ("do", "make", "perform", "take", "try", "pull", "execute", "throw"):
         return _do_a_motion(s, verb, i, j, k)
+    if verb == "give" and (turned := _turn_amount(s, verb, j)) is not None:
+        return turned  # "give us a quarter turn to the right"
     if verb == "give" and (s.at(i + 1) in ("me", "us") or s.at(i + 1) in DETERMINERS):
         return read_pick(s, i)
     return None
@@ -87,6 +92,19 @@ def _past_audience(s: ParseState, j: int) -> int:
         return j + 2
     if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "you"):
         return j + 1
+    return j
+
+
+def _past_someone(s: ParseState, j: int) -> int:
+    """Past a person named or described before what is given ("give Lily a ...", "give the
+    lady a ...", "give my little sister a ..."): up to the "a" that opens the thing given, within
+    four words; ``j`` when there is none."""
+    for k in range(j + 1, min(j + 5, s.n)):
+        t = s.toks[k]
+        if t in ("a", "an"):
+            return k
+        if t in BOUNDARY:
+            break
     return j
 
 

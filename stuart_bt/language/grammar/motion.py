@@ -136,6 +136,8 @@ def _motion_onwards(s: ParseState, verb: str, j: int, t: str) -> Result:
         return None  # "go ahead", "go on": permission, not a direction
     if verb in _BARE_PLACE_VERBS and _may_name_a_place(s, t):
         return _bare_place(s, j)
+    if verb in _BARE_PLACE_VERBS and t == "," and _may_name_a_place(s, s.at(j + 1)):
+        return _bare_place(s, j + 1)  # "let's go, kitchen, chop chop": where, after a breath
     return read_move(s, j, verb, default_back=verb in ("back", "retreat", "reverse"))
 
 

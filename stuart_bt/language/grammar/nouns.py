@@ -50,6 +50,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
             break
         if j > i and t in STRONG_VERBS:
             break
+        if t in _OPENS_ANOTHER and j > i and toks[j - 1] not in DETERMINERS and toks[j - 1] != "of":
+            break  # "pick up the cup the kids want to see it": a new noun phrase, another clause's subject
         if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
             break
         if j > i and t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
@@ -63,6 +65,13 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS):
         words = words[1:]
     return words, j
+
+
+# determiners and subject pronouns, which after a noun open another noun phrase or a clause ("the
+# cup the kids want", "the man a bottle", "the kitchen we are late"); a determiner not after "of"
+# ("a bottle of the water")
+_OPENS_ANOTHER = frozenset({"the", "a", "an", "i", "im", "ive", "we", "weve", "he", "hes", "she", "shes", "they",
+                            "theyre", "theyve", "youre", "youve"})
 
 
 def _no_noun(words: list[str]) -> bool:

@@ -1,0 +1,44 @@
+"""An amount said alone after a pause says how far the move or turn just asked for goes: "turn
+left, ninety degrees" is one quarter turn, not two; said roughly ("like", "or so") it is the same."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from stuart_bt.language.grammar import parse_command
+
+
+def steps(text: str) -> list[tuple[str, float, float, float]]:
+    return [(i.action, round(i.x, 3), round(i.y, 3), round(i.yaw, 3)) for i in parse_command(text)]
+
+
+@pytest.mark.parametrize("text,want", [
+    ("turn left, ninety degrees", [("turn_by_angle", 0, 0, round(math.pi / 2, 3))]),
+    ("turn right, about 45", [("turn_by_angle", 0, 0, round(-math.pi / 4, 3))]),
+    ("move forward, two metres", [("move_relative", 2, 0, 0)]),
+    ("go back, like half a metre", [("move_relative", -0.5, 0, 0)]),
+    ("move left, 30 centimetres", [("move_relative", 0, 0.3, 0)]),
+    ("turn left, yeah, like ninety degrees or so", [("turn_by_angle", 0, 0, round(math.pi / 2, 3))]),
+])
+def test_an_amount_after_a_pause_says_how_far_the_step_before_goes(text, want):
+    assert steps(text) == want
+
+
+@pytest.mark.parametrize("text,count", [
+    ("turn left, then ninety degrees", 2),        # "then": another step
+    ("turn left 90 degrees, 45", 2),              # the first said its amount
+    ("turn left, right 45", 2),                   # another direction: another step
+    ("turn around, 90 degrees", 2),               # no amount to restate
+])
+def test_an_amount_that_cannot_restate_the_step_before_is_another_step(text, count):
+    assert len(steps(text)) == count
+
+
+def test_an_amount_said_roughly_is_no_choice_and_no_leftover():
+    from stuart_bt.language.parse import Parser
+
+    for text in ("Stuart, walk forward roughly two metres, give or take", "Stuart, turn left ninety degrees or so"):
+        result = Parser().parse(text)
+        assert len(result.intents) == 1 and result.doubt == [], text
