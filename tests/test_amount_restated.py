@@ -42,3 +42,14 @@ def test_an_amount_said_roughly_is_no_choice_and_no_leftover():
     for text in ("Stuart, walk forward roughly two metres, give or take", "Stuart, turn left ninety degrees or so"):
         result = Parser().parse(text)
         assert len(result.intents) == 1 and result.doubt == [], text
+
+
+def test_a_spin_said_more_than_once_is_whole_spins_and_too_many_are_asked_about():
+    from stuart_bt.language.parse import Parser
+
+    twice = Parser().parse("Stuart, spin right twice")
+    assert [round(i.yaw, 3) for i in twice.intents] == [round(-4 * math.pi, 3)] and twice.doubt == []
+    thrice = Parser().parse("Stuart, spin left three times")
+    assert [round(i.yaw, 3) for i in thrice.intents] == [round(6 * math.pi, 3)] and thrice.doubt
+    assert [round(i.yaw, 3) for i in Parser().parse("Stuart, turn left three times").intents] == [
+        round(3 * math.pi / 2, 3)]  # a turn is a quarter turn each time

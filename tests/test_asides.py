@@ -49,3 +49,10 @@ def test_text_with_no_vocative_keeps_every_word_for_the_grammar(parser):
     assert parser.parse(text).command == text.removeprefix("stuart ")
     cut = "Stuart, go to the kitchen. Sam, can you wait here?"
     assert parser.parse(cut).command == "go to the kitchen"
+
+
+def test_a_group_called_after_a_command_is_someone_else(parser):
+    assert did(parser, "Stuart, walk to the drone cage - everyone, follow him please.") == [
+        ("navigate_to_marker", "drone cage")]
+    text = "Stuart, go to the entrance - watch your step, folks - thanks."
+    assert did(parser, text) == [("navigate_to_marker", "entrance")] and parser.parse(text).doubt == []

@@ -49,3 +49,29 @@ def test_someone_named_with_a_verb_after_them_is_talked_about(parser, text):
 def test_a_noun_phrase_ends_where_another_one_opens_but_not_after_of(parser):
     assert read(parser, "stuart give the man a bottle")[0] == []  # no "man a bottle" to pick up
     assert read(parser, "stuart pick up a bottle of the water") == ([("pick_up", "bottle")], False)  # which bottle
+
+
+@pytest.mark.parametrize("text,want", [
+    ("stuart when you get to station four put your hands up", [("navigate_to_marker", "station four"),
+                                                               ("gesture", "hands up")]),
+    ("stuart once you reach the kitchen pick up the apple", [("navigate_to_marker", "kitchen"), ("pick_up", "apple")]),
+    ("stuart go to station 3 wave", [("navigate_to_marker", "station 3"), ("gesture", "wave")]),
+])
+def test_a_command_after_a_place_with_no_pause_written_is_the_next_step(parser, text, want):
+    assert read(parser, text) == (want, False)
+
+
+def test_like_said_inside_a_place_name_is_a_filler(parser):
+    assert read(parser, "stuart um walk to the like drone cage you know") == ([("navigate_to_marker", "drone cage")],
+                                                                            False)
+
+
+def test_the_robots_name_said_again_before_a_stop_does_not_hide_it(parser):
+    text = "Stuart, go to the drone cage and wave, oh Stuart stop right now."
+    assert read(parser, text) == ([("stop", "")], False)
+    text = "Stuart, while the kids are watching, walk to the kitchen, actually Stuart, halt."
+    assert read(parser, text) == ([("stop", "")], False)
+
+
+def test_nah_before_a_retraction_is_part_of_it(parser):
+    assert read(parser, "stuart, grab the book nah never mind") == ([], False)

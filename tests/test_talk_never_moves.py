@@ -32,7 +32,6 @@ def gerund(command: str) -> str:
 
 # frames that make talk of a command phrase, whatever the phrase is
 TALK = [
-    lambda c: f"{c}, right?",
     lambda c: f"you can {c} on your own, right?",
     lambda c: f"you could {c} if you wanted, couldn't you?",
     lambda c: f"it would be silly to {c} now, wouldn't it?",
@@ -60,6 +59,18 @@ def test_talk_about_a_command_never_gives_an_intent(command: str, frame: int) ->
     said = "Hey Stuart, " + TALK[frame](command)
     result = PARSER.parse(said)
     assert result.wake and result.intents == [], said
+
+
+# a command with a tag word: a check that the robot heard, or a question about the plan?
+PUT_AS_A_QUESTION = [lambda c: f"{c}, right?", lambda c: f"{c}, yeah?", lambda c: f"so {c}, eh?"]
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(st.sampled_from(COMMANDS), st.sampled_from(range(len(PUT_AS_A_QUESTION))))
+def test_a_command_put_as_a_question_is_asked_about_never_done_at_once(command: str, frame: int) -> None:
+    said = "Hey Stuart, " + PUT_AS_A_QUESTION[frame](command)
+    result = PARSER.parse(said)
+    assert result.intents and [d.reason for d in result.doubt] == ["question"], said
 
 
 @settings(max_examples=100, deadline=None, derandomize=True)

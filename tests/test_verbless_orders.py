@@ -34,6 +34,12 @@ def test_a_place_after_off_to_on_to_or_lets_go_is_going_there(parser, text, plac
     assert did(parser, text) == [("navigate_to_marker", place)]
 
 
+def test_places_listed_after_first_and_then_are_a_plan(parser):
+    assert did(parser, "Stuart, first the drone cage, then the reading room") == [
+        ("navigate_to_marker", "drone cage"), ("navigate_to_marker", "reading room")]
+    assert parser.parse("Stuart, first the drone cage").intents == []  # no plan said: an answer, maybe
+
+
 @pytest.mark.parametrize("text", ["Stuart, go, now", "Stuart, let's go, the visitors are waiting"])
 def test_a_pause_after_go_names_no_place_unless_a_place_follows(parser, text):
     assert parser.parse(text).intents == []
@@ -60,3 +66,26 @@ def test_let_go_releases_the_arm(parser, text):
 def test_a_retraction_said_twice_takes_the_request_back_with_no_stop(parser):
     assert parser.parse("Stuart, walk to the kitchen - oh, never mind, forget it.").intents == []
     assert did(parser, "Stuart, walk to the kitchen, never mind, forget it, turn left") == [("turn_by_angle", "")]
+
+
+def test_a_place_named_before_its_command_after_a_question_thought_aloud_is_its_topic(parser):
+    text = "Stuart, hmm, where should you go now... the workbench, yes, go to the workbench."
+    assert did(parser, text) == [("navigate_to_marker", "workbench")]
+    assert did(parser, "Stuart, where did I leave the book? the book, find it") == [("find", "book")]
+    assert parser.parse("Stuart, what's that? The kitchen, I think.").intents == []
+
+
+@pytest.mark.parametrize("text,want", [
+    ("Stuart, off to the workbench, my friend.", [("navigate_to_marker", "workbench")]),
+    ("Stuart, next stop: the reading room.", [("navigate_to_marker", "reading room")]),
+    ("Stuart, go to the kitchen, then over to the entrance", [("navigate_to_marker", "kitchen"),
+                                                              ("navigate_to_marker", "entrance")]),
+    ("Stuart, take yourself over to the drone cage", [("navigate_to_marker", "drone cage")]),
+])
+def test_more_ways_to_send_the_robot_somewhere(parser, text, want):
+    assert did(parser, text) == want
+
+
+def test_next_stop_alone_or_after_a_pause_is_still_a_stop(parser):
+    assert did(parser, "Stuart, next, stop!") == [("stop", "")]
+    assert did(parser, "Stuart, next stop.") == [("stop", "")]

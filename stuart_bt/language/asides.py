@@ -24,8 +24,16 @@ from typing import NamedTuple
 from .grammar.lexicon import ALL_VERBS, AUX, DETERMINERS, MODALS, SUBJECTS, TRAILING, WH
 from .wake import FILLERS, GREETINGS
 
-# a capitalised word after the start or a pause (". ", "! ", "? ", "; ", " - "), then a comma
-_VOCATIVE = re.compile(r"(?:^|(?<=[.!?;:])\s+|\s*[-–—]+\s*)([A-Z][a-z]+),\s*")
+# a group in the room called by what it is ("folks, follow him"), in any case
+_GROUPS = "folks|guys|everyone|everybody|kids|children|people|team|ladies|gentlemen"
+
+_GROUP_WORDS = frozenset(_GROUPS.split("|"))
+
+# a capitalised word or a group after the start or a pause (". ", "! ", "? ", "; ", " - "), then a comma
+_VOCATIVE = re.compile(rf"(?:^|(?<=[.!?;:])\s+|\s*[-–—]+\s*)([A-Z][a-z]+|(?i:{_GROUPS})),\s*")
+
+# a stretch between pauses that ends by calling a group ("... - mind the cables, guys - ...")
+_GROUP_LAST = re.compile(rf"(?:(?<=[.!?;:])\s+|\s+[-–—]+\s+)([^-–—.!?;:]+?),\s*(?i:{_GROUPS})\s*(?=[-–—.!?;:]|$)")
 
 # words a sentence to a person may open with besides verbs and requests ("Sam, mind the cable")
 _SAID_TO_A_PERSON = frozenset({"please", "you", "mind", "careful", "watch", "come", "help", "let", "lets", "do",
@@ -33,14 +41,15 @@ _SAID_TO_A_PERSON = frozenset({"please", "you", "mind", "careful", "watch", "com
                                "wait", "hold", "stay", "look", "check", "go", "take", "bring", "tell", "ask",
                                "make", "keep", "open", "close", "move", "stand", "sit", "put", "show"})
 
+_OPENS_A_REQUEST = _SAID_TO_A_PERSON | ALL_VERBS | MODALS
+
 # words that open a sentence with a comma after them and are no one's name
 _NOT_A_NAME = (ALL_VERBS | AUX | MODALS | WH | SUBJECTS | DETERMINERS | TRAILING | FILLERS | {
     g for phrase in GREETINGS for g in phrase.split()} | {
     "please", "sorry", "thanks", "no", "yes", "careful", "wait", "okay", "ok", "actually", "oh", "ah", "hmm",
     "great", "good", "nice", "perfect", "excellent", "cool", "brilliant", "sure", "fine", "listen", "look",
-    "remember", "honestly", "seriously", "first", "next", "finally", "again", "also", "anyway", "everyone",
-    "guys", "folks", "everybody", "kids", "children", "left", "right", "forward", "back", "quick", "quickly",
-    "slowly", "sir", "madam"})
+    "remember", "honestly", "seriously", "first", "next", "finally", "again", "also", "anyway", "left", "right",
+    "forward", "back", "quick", "quickly", "slowly", "sir", "madam"})
 
 
 class Vocative(NamedTuple):
@@ -60,7 +69,7 @@ def vocatives(text: str, is_robot: Callable[[str], bool]) -> list[Vocative]:
         word = m.group(1).lower()
         if is_robot(word):
             found.append(Vocative(m.start(), m.end(), True))
-        elif word not in _NOT_A_NAME and _first_word(text, m.end()) in _SAID_TO_A_PERSON | ALL_VERBS | MODALS:
+        elif (word in _GROUP_WORDS or word not in _NOT_A_NAME) and _first_word(text, m.end()) in _OPENS_A_REQUEST:
             found.append(Vocative(m.start(), m.end(), False))
     return found
 
@@ -70,6 +79,8 @@ def said_to_the_robot(command: str, is_robot: Callable[[str], bool]) -> str:
     out, and the robot's name where it turns the speech back to the robot: "go to the reading
     room. Anna, can you follow him?" -> "go to the reading room."; "Sam, mind the cable - Stuart,
     forward one metre." -> "forward one metre.". Unchanged when nobody else is addressed."""
+    command = _GROUP_LAST.sub(lambda m: ". " if _first_word(m.group(1), 0) in _OPENS_A_REQUEST else m.group(0),
+                              command)  # "go to station two - mind the cables, guys - thanks"
     said = vocatives(command, is_robot)
     if said and not said[0].robot and said[0].start == 0 and not any(v.robot for v in said):
         said = said[1:]  # "Kitchen, go!" right after the wake phrase: an order, unless the robot is named again

@@ -32,7 +32,7 @@ class Limits:
 
 @dataclass(frozen=True)
 class Doubt:
-    """One reason to ask: ``reason`` is a code (``unused``, ``amount``, ``unread``, and from the
+    """One reason to ask: ``reason`` is a code (``unused``, ``amount``, ``question``, ``unread``, and from the
     executor ``unresolved``, ``confidence``, ``readings``), ``detail`` says it in words."""
 
     reason: str
@@ -53,6 +53,8 @@ def doubts(intents: Sequence[TaskIntent], coverage: Coverage, limits: Limits = L
     if signs:
         found.append(Doubt("amount", f"a {signs[0]} amount"))
     found.extend(_out_of_range(intents, limits))
+    if coverage.asked:  # "go to the kitchen, right?": a check that it heard, or a question about the plan?
+        found.append(Doubt("question", f"it was put as a question (..., {coverage.asked[0]}?)"))
     if coverage.unread:
         found.append(Doubt("unread", "too long: the end was not read"))
     return found

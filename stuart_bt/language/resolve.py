@@ -155,6 +155,14 @@ def normalise(text: str) -> tuple[str, ...]:
     return tuple(_singular(w) for w in words if w not in ("number", "no"))
 
 
+def _stem(word: str) -> str:
+    """A word without the endings that make "printing" and "printer" differ ("print")."""
+    for end in ("ing", "er"):
+        if word.endswith(end) and len(word) > len(end) + 3:
+            return word[:-len(end)]
+    return word
+
+
 class Resolver:
     """Maps spoken targets onto one map's markers and one detector's object labels.
 
@@ -253,6 +261,14 @@ class Resolver:
         own = [(alias, names) for alias, names in self._marker_aliases.items()
                if any(how != "synonym" for how in names.values())]  # synonyms are matched whole only
         inside = {name: "partial" for alias, names in own if spoken <= set(alias) for name in names}
+        if inside:
+            return inside
+        # "the 3D printing station", "the arms station": the same stems, "station" with no number
+        # naming none ("station 2" is a number's place)
+        numbered = any(w.isdigit() for w in words)
+        stems = {_stem(w) for w in spoken if not (w == "station" and not numbered)}
+        inside = {name: "partial" for alias, names in own if stems and stems <= {_stem(w) for w in alias}
+                  for name in names}
         if inside:
             return inside
         return {name: "partial" for alias, names in own

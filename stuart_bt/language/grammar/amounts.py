@@ -211,6 +211,8 @@ def _turn_result(s: ParseState, r: _Turn) -> Result:
         # leftwards; said more than once, "spin around" is whole spins, "turn around" half turns
         per = 2 * math.pi if r.verb == "spin" and r.times > 1 else math.pi
         return [(TURN, "", 0.0, 0.0, (r.sign or 1) * per * r.times)], r.j
+    if r.verb == "spin" and r.times > 1:  # "spin left three times", "spin three times": whole spins
+        return [(TURN, "", 0.0, 0.0, (r.sign or 1) * 2 * math.pi * r.times)], r.j
     if r.sign:
         deg = d.vague_turn_deg if r.vague else d.turn_deg
         return [(TURN, "", 0.0, 0.0, r.sign * math.radians(deg) * r.times)], r.j

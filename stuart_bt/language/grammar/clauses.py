@@ -39,6 +39,7 @@ from .lexicon import (
     REQUESTS_BY_FIRST,
     RIGHT,
     ROTATIONS,
+    SIGN_OFFS_BY_FIRST,
     SPEAKER_OPENERS_BY_FIRST,
     STOP_PHRASES_BY_FIRST,
     STOP_VERBS,
@@ -105,6 +106,9 @@ def _polite(s: ParseState, i: int) -> int:
         if i >= n:
             break
         t = toks[i]
+        if t in s.vocatives:
+            i += 1  # "actually Stuart, stop": the name said again before the verb
+            continue
         if t in THANKS_AHEAD_OPENERS_BY_FIRST and (after := _thanks_ahead(s, i)):
             i = after  # "I'd be ever so grateful if you could ..."
             continue
@@ -294,6 +298,8 @@ def _verbless(s: ParseState, i: int) -> Result:
     if s.first and (got := _bare_order(s, i)) is not None:
         return got
     last = s.last_action
+    if last == NAVIGATE and t in _ON_TO and s.at(i + 1) == "to":
+        i, t = i + 1, "to"  # "... then over to the robot arms"
     if last == NAVIGATE and t in TO_WORDS and t != "for" and i + 1 < s.n:  # "... then to the kitchen"
         k = i + 1
         while k < s.n and s.toks[k] in ("the", "your", "my"):
@@ -323,6 +329,10 @@ _ORDER_WORDS = by_first(sorted({("now",), ("go",), ("please",), ("quick",), ("qu
 # to the workbench"): they say "go", as "to" alone does
 _ON_TO = frozenset({"off", "on", "onwards", "onward", "over", "across", "along", "straight"})
 
+_FIRST = frozenset({"first", "firstly"})
+
+_ORDER_LEADS = frozenset({"to"}) | _FIRST  # "to the kitchen!", "first the workbench, then ..."
+
 _ORDER_ENDS = HARD_STOPS | {"and", "then"}  # "to the kitchen!", "to the kitchen and then wave"
 
 
@@ -330,8 +340,9 @@ def _bare_order(s: ParseState, i: int) -> Result:
     """A place said as an order with no verb, first in the command: "kitchen, now", "station
     four, go", "to the workbench you go", "to the 3D printers!". Alone, a noun is no order
     ("kitchen?" asks about it); "to" and a place must end the sentence ("off to the kitchen with
-    you", "on to station five now")."""
-    j = i + 2 if s.toks[i] in _ON_TO and s.at(i + 1) == "to" else i + 1 if s.toks[i] == "to" else i
+    you", "on to station five now"), and "first" and a place be followed by "then" ("first the
+    workbench, then the entrance")."""
+    j = i + 2 if s.toks[i] in _ON_TO and s.at(i + 1) == "to" else i + 1 if s.toks[i] in _ORDER_LEADS else i
     if j >= s.n or s.toks[j] in ALL_VERBS or s.toks[j] in SUBJECTS and s.toks[j] not in DETERMINERS:
         return None  # "to be honest, ...", "to me it looks fine"
     words, e = read_noun_phrase(s, j)
@@ -340,7 +351,11 @@ def _bare_order(s: ParseState, i: int) -> Result:
     k = e + 1 if s.at(e) == "," else e
     order = s.phrase_at(k, _ORDER_WORDS) if k < s.n else None
     end = k + len(order) if order else e
-    if not words or not may_end(s, end) or not (order or (j > i and (e >= s.n or s.toks[e] in _ORDER_ENDS))):
+    planned = s.at(k) == "then" and (s.toks[i] in _FIRST or (i > 0 and s.toks[i - 1] in _FIRST))  # "first the
+    # workbench, then the entrance"
+    signed = s.phrase_at(k, SIGN_OFFS_BY_FIRST) if j > i and k > e and s.at(k) in SIGN_OFFS_BY_FIRST else None
+    if not words or not may_end(s, end) or not (order or planned or (signed and may_end(s, k + len(signed))) or (
+            j > i and (e >= s.n or s.toks[e] in _ORDER_ENDS))):  # ("off to the drone cage, my friend")
         return None
     place = read_place(s, words)
     return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], end) if place is not None else None
@@ -354,12 +369,28 @@ def _idiom_or_gesture(s: ParseState, i: int) -> Result:
         return [(TURN_AROUND, "", 0.0, 0.0, math.pi)], i + len(idiom)
     k = i + 1 if toks[i] in DETERMINERS and i + 1 < n else i
     g = s.phrase_at(k, GESTURES_BY_FIRST)
-    if g is not None and (len(g) > 1 or g[0] not in ("five", "kiss", "waves", "kisses")) and may_end(s, k + len(g)):
-        end = k + len(g)
-        while end < n and toks[end] in GESTURE_NOUNS:
-            end += 1
-        return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], end
-    return None
+    if g is None or (len(g) == 1 and g[0] in ("five", "kiss", "waves", "kisses")):
+        return None
+    end = k + len(g)
+    if not may_end(s, end) and len(g) > 1:
+        end = _past_recipient(s, end)  # "high five this young man": given to someone
+    if not may_end(s, end):
+        return None
+    while end < n and toks[end] in GESTURE_NOUNS:
+        end += 1
+    return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], end
+
+
+def _past_recipient(s: ParseState, j: int) -> int:
+    """Past the person a gesture is given to ("me", "everyone", "this young man", "the kids"):
+    a pronoun, or a determiner and up to three words to the end of the clause; ``j`` when none."""
+    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "you"):
+        return j + 1
+    if s.at(j) in ("this", "that", "the", "these", "those", "my", "our"):
+        for k in range(j + 2, j + 5):
+            if may_end(s, k):
+                return k
+    return j
 
 
 def _another_place(s: ParseState, i: int) -> Result:
@@ -407,9 +438,10 @@ def _another_target(s: ParseState, i: int, last: str) -> Result:
 
 
 def read_topic(s: ParseState, i: int) -> bool:
-    """A first clause that is only a noun phrase before a comma ("the kitchen, please go there")
+    """A first clause, or one opening a sentence, that is only a noun phrase before a comma ("the
+    kitchen, please go there"; "where should you go... the entrance, yeah, go to the entrance")
     becomes what "there" and "it" mean; True when it was one."""
-    if not s.first or s.toks[i] not in DETERMINERS:
+    if not (s.first or (i > 0 and s.toks[i - 1] in HARD_STOPS)) or s.toks[i] not in DETERMINERS:
         return False
     words, j = read_noun_phrase(s, i)
     if s.at(j) != "," or not words or words[0] in SUBJECTS or any(w in COPULA or w in AUX for w in words):

@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from .driver import CHOICE, TALK, TIMES, USED, Reading
+from .driver import ASKED, CHOICE, TALK, TIMES, USED, Reading
 from .lexicon import (
     BOUNDARY,
     CONNECTORS,
@@ -49,9 +49,11 @@ class Coverage:
     unused: tuple[str, ...] = ()  # content words no clause used
     talk: tuple[str, ...] = ()  # part of a question or a statement
     unread: str = ""  # past the grammar's length limit: not read at all
+    asked: tuple[str, ...] = ()  # a tag that put a command as a question ("go to the kitchen, right?")
 
     def to_dict(self) -> dict[str, Any]:
-        return {"used": list(self.used), "unused": list(self.unused), "talk": list(self.talk), "unread": self.unread}
+        return {"used": list(self.used), "unused": list(self.unused), "talk": list(self.talk), "unread": self.unread,
+                "asked": list(self.asked)}
 
 
 def coverage(reading: Reading, vocatives: Iterable[str] = ()) -> Coverage:
@@ -59,12 +61,15 @@ def coverage(reading: Reading, vocatives: Iterable[str] = ()) -> Coverage:
     used: list[str] = []
     unused: list[str] = []
     talk: list[str] = []
+    asked: list[str] = []
     extra = frozenset(vocatives)
     for tok, mark in zip(reading.tokens, reading.marks, strict=True):
         if mark == USED:
             used.append(tok)
         elif mark == TALK:
             talk.append(tok)
+        elif mark == ASKED:
+            asked.append(tok)
         elif (mark == CHOICE and tok not in BOUNDARY) or (tok not in FILLER and tok not in extra):
             unused.append(tok)  # "or maybe right": in a choice left open even a filler word is unsure
-    return Coverage(tuple(used), tuple(unused), tuple(talk), reading.unread)
+    return Coverage(tuple(used), tuple(unused), tuple(talk), reading.unread, tuple(asked))

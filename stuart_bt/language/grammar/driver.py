@@ -36,10 +36,10 @@ from collections.abc import Iterable
 from dataclasses import replace
 from typing import NamedTuple
 
-from ..intents import FIND, MOVE, NAVIGATE, PICK, STOP, TURN, TaskIntent
+from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
 from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
-from .forms import question_tags, retraction_at
+from .forms import CHECK, question_tags, retraction_at
 from .lexicon import (
     ALL_VERBS,
     AUX,
@@ -63,6 +63,7 @@ from .lexicon import (
     SUBORDINATORS,
     TIME_OPENERS,
 )
+from .motion import UNTIL_VERBS
 from .nouns import read_arrival
 from .state import Defaults, ParseState, Spec, may_end, skip_rest
 from .tokens import Tokens, tokenize
@@ -77,7 +78,8 @@ class Grammar:
 
     def __init__(self, *, defaults: Defaults | None = None, vocatives: Iterable[str] = ()) -> None:
         self.defaults = defaults or Defaults()
-        self.stop_words = NP_STOP | frozenset(v.lower() for v in vocatives)
+        self.vocatives = frozenset(v.lower() for v in vocatives)
+        self.stop_words = NP_STOP | self.vocatives
 
     def parse(self, text: str) -> list[TaskIntent]:
         """The intents in ``text``, in the order they are to be done; [] when it holds no command."""
@@ -127,7 +129,7 @@ class _CommandReader:
         self.text, self.tokens = text, tokens
         self.toks = list(tokens.toks)  # a past verb after "once you've" may be replaced by its base form
         self.s = ParseState(self.toks, len(self.toks), grammar.defaults, grammar.stop_words, read_clause,
-                            FAMILY_READERS, contracted=tokens.contracted)
+                            FAMILY_READERS, contracted=tokens.contracted, vocatives=grammar.vocatives)
         self.out: list[TaskIntent] = []
         self.i = 0
         self.dead = False  # the sentence opened as a question or statement
@@ -137,7 +139,7 @@ class _CommandReader:
         self.hold = False  # "before you Y, X": Y's intents wait ...
         self.held: list[TaskIntent] = []  # ... here until X's are in
         self.marks = bytearray(len(self.toks))  # per token: USED, TALK, or 0 (read by no clause)
-        self.tagged = question_tags(self.toks)  # sentences that end in a question tag: talk (None: no tag)
+        self.tagged = question_tags(self.toks, tokens.gerunds)  # sentences ending in a question tag (None: no tag)
         self.retract_at: int | None = None  # "go to the kitchen, no.": a correction nothing replaced takes back
         self.conditional = False  # an "if" clause came before a command: the robot cannot check it
         self.after_subordinate = False  # the clause before was "when you get there": a stop after it is a step
@@ -149,7 +151,7 @@ class _CommandReader:
         tagged = self.tagged
         while self.i < n:
             if tagged is not None and tagged[self.i]:
-                self.marks[self.i] = TALK
+                self.marks[self.i] = ASKED if tagged[self.i] == CHECK else TALK
                 self.i += 1
                 continue
             if self._between_clauses() or self._in_conversation():
@@ -167,6 +169,10 @@ class _CommandReader:
         s, toks, t = self.s, self.toks, self.toks[self.i]
         if t in HARD_STOPS:
             self.dead = False
+            self.i += 1
+            return True
+        if t in s.vocatives and not self.dead:
+            self._mark(self.i, self.i + 1, USED)  # "..., actually Stuart stop right there": the name again
             self.i += 1
             return True
         if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self._corrects_after(self.i + 1):
@@ -333,10 +339,29 @@ class _CommandReader:
             return
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
-        self._mark(start, _condition_at(self.toks, start, j), USED)  # "... until the professor arrives": unused
+        self._mark_read(start, j)
         self._remember(specs)
-        self.i = self.clause_end = skip_rest(s, j)
+        # "when you get to station six put your hands up": the main clause follows with no pause
+        self.i = self.clause_end = j if subordinate and s.at(j) in ALL_VERBS else skip_rest(s, j)
+        self._mark_after(start, j, specs)
+
+    def _mark_read(self, start: int, end: int) -> None:
+        """The words of a clause an intent came from are used, except a condition in them ("...
+        until the professor arrives") and a gait the robot lacks ("crawl to the entrance"): the
+        robot asks about those."""
+        self._mark(start, _condition_at(self.toks, start, end), USED)
+        if not _GAITS_IT_LACKS.isdisjoint(self.toks[start:end]):
+            for k in range(start, end):
+                if self.toks[k] in _GAITS_IT_LACKS:
+                    self.marks[k] = 0
+
+    def _mark_after(self, start: int, j: int, specs: list[Spec]) -> None:
+        """What the words between a clause's end ``j`` and the next clause were: a reason, whom it
+        is for, a statement run on, or which thing was meant."""
+        s = self.s
         why = _reason_at(self.toks, j, self.i)
+        if all(sp[0] in _DONE_FOR_SOMEONE for sp in specs):  # not "look for the cup": its thing
+            why = min(why, _for_whom_at(self.toks, start + 1, self.i))
         if why == self.i > j and self._remark_at(j):
             self.dead, self.i = True, j  # "pick up the cup the kids want to see it": a statement run on,
             return  # no pause written; talk to the end of its sentence
@@ -463,8 +488,8 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     if i == 0 or s.toks[i - 1] not in (",", "but", "so"):
         return False
     k = i
-    while k < i + 2 and s.at(k) in _BEFORE_A_STOP:  # "..., you know what, just stop"; "..., but please just stop"
-        k += 1
+    while k < i + 3 and (s.at(k) in _BEFORE_A_STOP or s.at(k) in s.vocatives):  # "..., but please just stop",
+        k += 1  # "..., actually Stuart stop right there"
     end = _stop_phrase_end(s, k)
     return end > 0 and _stop_ends(s, end)
 
@@ -512,8 +537,9 @@ TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "m
                    "noon", "midnight", "pm"})
 
 # what a token was to the reader: words a command came from, words of conversation, words of a
-# choice the speaker left open ("..., or maybe right": the robot asks)
-USED, TALK, CHOICE = 1, 2, 3
+# choice the speaker left open ("..., or maybe right": the robot asks), a tag after a command
+# ("go to the kitchen, right?": a question about it, or a check that it was heard? the robot asks)
+USED, TALK, CHOICE, ASKED = 1, 2, 3, 4  # ASKED: a tag that puts a command as a question ("..., right?")
 _RUNS = {how: bytes((how,)) * 256 for how in (USED, TALK, CHOICE)}  # MAX_TOKENS marks of each, sliced
 
 
@@ -524,8 +550,9 @@ def _condition_at(toks: list[str], start: int, end: int) -> int:
         return end
     for k in range(start + 1, end):  # not its first word: "if you could ..." is polite
         if toks[k] in CONDITIONS and not (toks[k] == "if" and k + 2 < end and toks[k + 1] == "you" and toks[
-                k + 2] in ("could", "would")):  # nor in a polite opener: "I'd be grateful if you could ..."
-            return k
+                k + 2] in ("could", "would")) and not (  # nor in a polite opener: "I'd be grateful if you could ..."
+                toks[k] in ("until", "till") and toks[k - 1] in UNTIL_VERBS and toks[k + 1:k + 2] == ["the"]):
+            return k  # ("go until the entrance": where to, read as "to")
     return end
 
 
@@ -543,6 +570,18 @@ def _reason_at(toks: list[str], start: int, end: int) -> int:
     return end
 
 
+def _for_whom_at(toks: list[str], start: int, end: int) -> int:
+    """Where "for" and whom a command is done for start ("turn around for the camera", "wave for
+    the kids"), inside the command's words or after them, else ``end``; a time ("for a minute",
+    "for the next ten minutes") is not, and an amount ("for two metres") is read as one."""
+    if "for" not in toks[start:end]:  # the common case, without a Python loop
+        return end
+    for k in range(start, end - 1):
+        if toks[k] == "for" and toks[k + 1] in _FOR_WHOM and TIMES.isdisjoint(toks[k + 1:end]):
+            return k
+    return end
+
+
 # words that open a statement but no subject of one after a command ("pick up a cup", "go to the
 # kitchen if ...", "turn left not right")
 _NO_SUBJECT = frozenset({"a", "an", "one", "not", "if", "probably", "because", "although", "though", "unless", "said"})
@@ -552,6 +591,17 @@ _REMARK_VERBS = frozenset({"want", "wants", "wanna", "need", "needs", "love", "l
                            "thinks", "know", "knows", "got", "get", "gets", "said", "says", "say"})
 
 _REASONS = frozenset({"because", "cause", "cos", "coz", "cuz"})
+
+# verbs of going in a way a walking humanoid cannot ("crawl to the entrance"): read as going
+# there, but the word is not understood, so the robot asks
+_GAITS_IT_LACKS = frozenset({"crawl", "slither", "swim", "fly"})
+
+# actions that "for the camera" says whom they are done for (the others take a thing after "for")
+_DONE_FOR_SOMEONE = frozenset({MOVE, TURN, TURN_AROUND, GESTURE})
+
+# words that open who or what a command is done for ("for the camera", "for me", "for everyone")
+_FOR_WHOM = frozenset({"the", "me", "us", "everyone", "everybody", "them", "him", "her", "our", "my", "all", "those",
+                       "these", "this", "that", "your"})
 
 _PURPOSE_SUBJECTS = frozenset({"that", "we", "i", "you", "they", "everyone", "everybody", "people", "he", "she",
                                "the", "our", "my", "visitors", "guests", "kids", "children"})

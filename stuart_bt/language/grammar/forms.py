@@ -8,8 +8,11 @@ from __future__ import annotations
 
 from .lexicon import (
     ALL_VERBS,
+    AUX,
     BOUNDARY,
+    COPULA,
     HARD_STOPS,
+    MODALS,
     NEGATIVE_TAG_AUX,
     REQUEST_TAGS,
     RETRACTIONS_BY_FIRST,
@@ -20,13 +23,19 @@ from .lexicon import (
 )
 from .state import ParseState
 
+CHECK = 2  # a tag word after a command: a check that the robot heard, or a question? neither a step nor talk
 
-def question_tags(toks: list[str]) -> bytearray | None:
-    """Per token: 1 when its sentence ends with a question tag (None: no comma, so no tag). A
+
+def question_tags(toks: list[str], gerunds: frozenset[int] = frozenset()) -> bytearray | None:
+    """Per token: 1 when its sentence ends with a question tag, :data:`CHECK` for a tag word after
+    a command (None: no comma, so no tag). A
     tag follows a comma and ends the sentence: a tag word ("right", "correct", "yeah") or an
     auxiliary and a pronoun ("isn't it", "wouldn't it", "didn't you"). A modal and "you" ("will
     you", "won't you") is a request when the sentence opens with a command, so it is left to the
-    clause reader."""
+    clause reader; a tag word after a sentence that opens with a command ("head to the printers
+    now, yeah?") is :data:`CHECK`: the command is read, and the robot asks whether it was meant
+    (a check that it heard, or a question about the plan?); ``gerunds`` are the tokens said as
+    ing-forms, which open statements: "turning left takes you there, right?")."""
     if "," not in toks:  # a written tag follows a comma: most commands have none
         return _unpunctuated_tag(toks)
     out = bytearray(len(toks))
@@ -34,7 +43,11 @@ def question_tags(toks: list[str]) -> bytearray | None:
     for end in range(len(toks) + 1):
         if end < len(toks) and toks[end] not in HARD_STOPS:
             continue
-        if _ends_with_tag(toks, start, end, toks[end] if end < len(toks) else ""):
+        if not _ends_with_tag(toks, start, end, toks[end] if end < len(toks) else ""):
+            pass
+        elif toks[end - 1] in TAG_WORDS and _opens_with_a_command(toks, start, end, gerunds):
+            out[end - 1] = CHECK  # "head to the printers now, yeah?": read, and asked about
+        else:
             out[start:end] = b"\x01" * (end - start)
         start = end + 1
     return out
@@ -53,6 +66,21 @@ def _ends_with_tag(toks: list[str], start: int, end: int, terminator: str) -> bo
     # "..., is it not?"
     return len(words) >= 5 and words[-4] == "," and words[-3] in TAG_AUX and words[-2:] == ["not", words[-1]] and (
         words[-1] in TAG_PRONOUNS)
+
+
+def _opens_with_a_command(toks: list[str], start: int, end: int, gerunds: frozenset[int]) -> bool:
+    """Whether the sentence ``toks[start:end]`` opens with a verb said as a command (past "ok",
+    "so", "now", "please", "just") and holds no auxiliary that would make it a statement ("turn
+    left is what you did, right?")."""
+    k = start
+    while k < end and toks[k] in _BEFORE_A_COMMAND:
+        k += 1
+    return k < end and toks[k] in ALL_VERBS and toks[k] not in SUBJECTS and k not in gerunds and (
+        _STATEMENT_VERBS.isdisjoint(toks[k:end - 2]))
+
+
+_BEFORE_A_COMMAND = frozenset({"ok", "okay", "so", "now", "please", "just", ","})
+_STATEMENT_VERBS = COPULA | AUX | MODALS
 
 
 def _unpunctuated_tag(toks: list[str]) -> bytearray | None:
@@ -83,5 +111,6 @@ def retraction_at(s: ParseState, i: int) -> int:
         return 0
     after = s.at(i + len(phrase))
     if phrase in (("dont",), ("do", "not"), ("nah",), ("kidding",), ("joking",)) and after and after not in BOUNDARY:
-        return 0
+        more = retraction_at(s, i + len(phrase)) if after in RETRACTIONS_BY_FIRST else 0
+        return len(phrase) + more if more else 0  # "nah forget it": one retraction
     return len(phrase)

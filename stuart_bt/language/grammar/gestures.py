@@ -27,8 +27,17 @@ def skip_gesture_tail(s: ParseState, j: int) -> int:
     while j < n and toks[j] not in BOUNDARY:
         if toks[j] in STRONG_VERBS and toks[j] not in ("wave",) and j + 1 < n and toks[j + 1] not in BOUNDARY:
             break
+        if toks[j] == "with" and _one_hand(s, j + 1):
+            break  # "wave with your right hand": a gesture plays as it was made, so the robot asks
         j += 1
     return j
+
+
+def _one_hand(s: ParseState, k: int) -> bool:
+    """Whether one hand or arm is chosen at ``k`` ("your left hand", "the right arm", "one hand")."""
+    if s.at(k) in ("your", "my", "the", "his", "her"):
+        k += 1
+    return s.at(k) in ("left", "right", "one", "other") and s.at(k + 1) in ("hand", "arm")
 
 
 def read_gesture(s: ParseState, i: int) -> Result:

@@ -60,12 +60,14 @@ def read_do(s: ParseState, i: int) -> Result:
 
 
 def _led_somewhere(s: ParseState, verb: str, i: int) -> Found | None:
-    """ "take me to the kitchen", "show me to the bathroom", "show us the way to ...", "show me
-    where the kitchen is": a walk there."""
+    """ "take me to the kitchen", "take yourself over to the lab", "show me to the bathroom",
+    "show us the way to ...", "show me where the kitchen is": a walk there."""
     j = i + 1
-    if verb == "take" and s.at(j) in ("me", "us", "him", "her", "them") and s.at(j + 1) in TO_WORDS:
-        words, e = read_noun_phrase(s, j + 2)
-        return Found(_walk_to(s, words, e))
+    if verb == "take" and s.at(j) in ("me", "us", "him", "her", "them", "yourself"):
+        k = j + 2 if s.at(j + 1) in ("over", "off", "down", "up", "back", "across") else j + 1
+        if s.at(k) in TO_WORDS:  # "take me to the kitchen", "take yourself over to the reading room"
+            words, e = read_noun_phrase(s, k + 1)
+            return Found(_walk_to(s, words, e))
     if verb != "show" or s.at(j) not in ("me", "us", "them", "him", "her", "everyone"):
         return None
     k = j + 1

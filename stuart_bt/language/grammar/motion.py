@@ -102,9 +102,15 @@ def _heard_as_to(s: ParseState, verb: str, j: int, t: str) -> str:
     if t in ("2", "two", "too") and s.at(j + 1) in ("the", "your", "my", "our", "station"):
         return "to"  # a number needs a unit or a direction
     if s.at(j + 1) in ("the", "your", "my", "our") and (t == "in" and verb in ("go", "come", "head", "move") or (
-            t == "until" and verb in ("go", "come", "walk", "run", "head", "move", "drive"))):
+            t == "until" and verb in UNTIL_VERBS)):
         return "to"
+    if t == "at" and verb in ("go", "come", "walk", "head", "run") and s.at(j + 1) in ("the", "station"):
+        return "to"  # "please to go at station 2", as a speaker of another language says it
     return t
+
+
+# verbs after which "until the ..." says where to ("go until the entrance"), not until when
+UNTIL_VERBS = frozenset({"go", "come", "walk", "run", "head", "move", "drive"})
 
 
 def _motion_to(s: ParseState, verb: str, k: int) -> Result:

@@ -33,6 +33,9 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     j = i
     while j < n:
         t = toks[j]
+        if t == "like" and j > i and toks[j - 1] in DETERMINERS:
+            j += 2 if s.at(j + 1) == "," else 1  # "go to the like reading room": a filler
+            continue
         if t in stop:
             if j == i and t in ("that", "this", "there", "here", "right"):
                 j += 1  # "pick that up", "go there": the caller reads a pronoun
@@ -48,10 +51,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
                 j += 1  # "the right cup", "right kiss" read by other rules first
                 continue
             break
-        if j > i and t in STRONG_VERBS:
+        if j > i and (t in STRONG_VERBS or _another_phrase_at(toks, i, j)):
             break
-        if t in _OPENS_ANOTHER and j > i and toks[j - 1] not in DETERMINERS and toks[j - 1] != "of":
-            break  # "pick up the cup the kids want to see it": a new noun phrase, another clause's subject
         if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
             break
         if j > i and t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
@@ -62,8 +63,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
             break  # "bring the book back to the entrance", "put it back"
         j += 1
     words = toks[i:j]
-    while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS):
-        words = words[1:]
+    while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS or words[0] in ("like", ",")):
+        words = words[1:]  # ("the, like, reading room": a filler after the determiner)
     return words, j
 
 
@@ -72,6 +73,16 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
 # ("a bottle of the water")
 _OPENS_ANOTHER = frozenset({"the", "a", "an", "i", "im", "ive", "we", "weve", "he", "hes", "she", "shes", "they",
                             "theyre", "theyve", "youre", "youve"})
+
+
+def _another_phrase_at(toks: list[str], i: int, j: int) -> bool:
+    """Whether ``toks[j]``, inside a noun phrase that began at ``i``, starts something else: a
+    verb after a number ("when you get to station six put your hands up"), or a determiner or a
+    subject after a noun ("pick up the cup the kids want to see it"; not after "of")."""
+    t, before = toks[j], toks[j - 1]
+    if j > i + 1 and t in ALL_VERBS and word_value(before) is not None:
+        return True
+    return t in _OPENS_ANOTHER and before not in DETERMINERS and before != "of"
 
 
 def _no_noun(words: list[str]) -> bool:

@@ -64,6 +64,7 @@ class ParseState:
     topic: str = ""  # a bare noun phrase said before the command ("the kitchen, go there")
     first: bool = True
     subordinate: bool = False  # reading "when you ...": "you" is the subject, so no ellipsis
+    vocatives: frozenset[str] = frozenset()  # the robot's name, said again inside the command
 
     def read_as(self, family: str, i: int) -> Result:
         """Read the verb at ``i`` as another family's ("get the cup" is a pick, "make a U-turn" a

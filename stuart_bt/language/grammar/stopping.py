@@ -22,6 +22,8 @@ def read_stop(s: ParseState, i: int) -> Result:
     verb = toks[i]
     j = i + 1
     nxt = s.at(j)
+    if verb == "stop" and i > 0 and toks[i - 1] in _ORDINALS and nxt not in BOUNDARY:
+        return _next_stop(s, j)  # "next stop: the electronics bench": where to, not a stop
     needs = STOP_VERB_NEEDS.get(verb)
     if needs is not None and nxt not in needs:
         return None  # "stand in line", "never again", "cut the cake": not a stop
@@ -40,3 +42,17 @@ def read_stop(s: ParseState, i: int) -> Result:
             break
         j += 1
     return [(STOP, "", 0.0, 0.0, 0.0)], j
+
+
+# words before "stop" that make it a place on a route ("next stop, the kitchen")
+_ORDINALS = frozenset({"next", "first", "last", "final", "second", "third"})
+
+
+def _next_stop(s: ParseState, j: int) -> Result:
+    """The place named after "next stop" ("next stop: the drone cage", "next stop is the
+    kitchen"), or None when no place is named (then it is no command)."""
+    if s.at(j) in ("is", "will", "be"):
+        j += 2 if s.at(j) == "will" else 1
+    words, e = read_noun_phrase(s, j)
+    place = read_place(s, words) if words else None
+    return ([(NAVIGATE, place, 0.0, 0.0, 0.0)], skip_rest(s, e)) if place else None
