@@ -74,12 +74,23 @@ def test_a_misheard_greeting_wakes_like_a_bare_name_with_a_pause_after_it(wake: 
     assert m.distance > 0, "a guessed greeting is a less sure match than a heard one"
 
 
-@pytest.mark.parametrize("utterance", ["case Stuart go to the kitchen", "thanks Stuart, that was great",
+@pytest.mark.parametrize("utterance", ["case Stuart go to the kitchen", "thanks to Stuart, that was great",
                                        "I think Stuart, is tired", "the tall Stuart, went home",
                                        "tell Stuart, go away", "poor Stuart, he is tired",
                                        "is Stuart, the robot, here?"])
 def test_a_word_before_the_name_without_a_pause_or_unlike_hey_does_not_wake(wake: WakeFilter, utterance: str) -> None:
     assert not wake.match(utterance).woke
+
+
+@pytest.mark.parametrize("utterance,command", [("thanks Stuart, that was great", "that was great"),
+                                               ("Cheers Stuart, you can go back to the dock now",
+                                                "you can go back to the dock now"),
+                                               ("sorry Stuart, wrong place, go to the kitchen",
+                                                "wrong place, go to the kitchen")])
+def test_thanks_praise_or_sorry_before_the_name_addresses_the_robot(wake: WakeFilter, utterance: str,
+                                                                    command: str) -> None:
+    m = wake.match(utterance)
+    assert m.woke and m.command == command
 
 
 def test_command_keeps_its_spelling_and_a_final_question_mark(wake: WakeFilter) -> None:

@@ -304,13 +304,7 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
             return Quantity(value, dim, j)
         return None
     value, j = got
-    # "half a metre", "three quarters of a metre", "half of a turn"
-    if j < n and toks[j] == "of":
-        j += 1
-    if j < n and toks[j] in ("a", "an") and j + 1 < n and (toks[j + 1] in UNITS or toks[j + 1] in WHOLE):
-        j += 1
-    if j < n and toks[j] in WHOLE:  # "one full turn"
-        j += 1
+    j = _to_the_unit(toks, j)
     if j < n and toks[j] in UNITS:
         dim, factor = UNITS[toks[j]]
         j += 1
@@ -322,6 +316,21 @@ def read_quantity(toks: Sequence[str], i: int) -> Quantity | None:
             total, j = _centimetres_after(toks, j, total)  # "one metre fifty (centimetres)"
         return Quantity(total, dim, j)
     return Quantity(value, "", got[1])  # a bare number: the caller knows its unit
+
+
+def _to_the_unit(toks: Sequence[str], j: int) -> int:
+    """Past the words between a number and its unit: "one *more* metre", "half *of a* metre",
+    "three quarters *of a* turn", "one *full* turn"."""
+    n = len(toks)
+    if j + 1 < n and toks[j] in ("more", "extra") and toks[j + 1] in UNITS:
+        j += 1  # "one more metre", "two extra metres": how far still, not another amount
+    if j < n and toks[j] == "of":
+        j += 1
+    if j < n and toks[j] in ("a", "an") and j + 1 < n and (toks[j + 1] in UNITS or toks[j + 1] in WHOLE):
+        j += 1
+    if j < n and toks[j] in WHOLE:
+        j += 1
+    return j
 
 
 def ordinal(tok: str) -> int | None:

@@ -41,6 +41,8 @@ FILLERS: frozenset[str] = frozenset({
     "um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "em", "hm", "hmm", "hmmm", "mm", "mmm",
     "ah", "ahh", "oh", "ooh", "so", "well", "yeah", "yes", "right", "alright", "now", "and", "but",
     "there", "dear", "please", "then",
+    # thanks or praise before the name ("Thanks Stuart, you can go back to the dock now")
+    "thanks", "cheers", "sorry", "great", "perfect", "brilliant", "excellent", "lovely", "cool", "nice",
 })
 _TOKEN = re.compile(r"[^\W_]+(?:['’][^\W_]+)*")
 _PAUSE = frozenset(",.!?:;…-–—")

@@ -242,6 +242,8 @@ def read_clause(s: ParseState, i: int) -> Result:
     toks, n = s.toks, s.n
     if toks[i] in REQUESTS_BY_FIRST and (got := _request(s, i)) is not None:
         return got
+    if toks[i] in _WANTED_BY_FIRST and (got := _wanted_at(s, i)) is not None:
+        return got
     if toks[i] in SPEAKER_OPENERS_BY_FIRST and (got := _reciprocal(s, i)) is not None:
         return got
     if toks[i] in WISH_QUESTIONS_BY_FIRST and _asks_a_wish(s, i):
@@ -320,6 +322,7 @@ def _verbless(s: ParseState, i: int) -> Result:
 
 
 _ORDER_WORDS = by_first(sorted({("now",), ("go",), ("please",), ("quick",), ("quickly",), ("asap",), ("pronto",),
+                                 ("if", "you", "please"), ("if", "you", "would"), ("if", "you", "dont", "mind"),
                                  ("you", "go"), ("off", "you", "go"), ("right", "now"), ("chop", "chop"),
                                  ("with", "you"), ("we", "go")},
                                 key=lambda p: (-len(p), p)))
@@ -404,6 +407,27 @@ def _another_place(s: ParseState, i: int) -> Result:
 
 # words that say an amount is rough, before it ("like ninety degrees", "about two metres")
 _ABOUT = frozenset({"like", "about", "around", "roughly", "approximately", "approx", "maybe", "say", "some"})
+
+
+# "I'd like you over at the charging dock", "I need you at the entrance": wanted somewhere
+_WANTED_BY_FIRST = by_first(sorted({(who, "need", "you") for who in ("i", "we")} | {(who, "want", "you") for who in (
+    "i", "we")} | {("id", "like", "you"), ("wed", "like", "you"), ("i", "would", "like", "you"), ("id", "love", "you"),
+    ("i", "need", "you", "back"), ("we", "need", "you", "back")}, key=lambda p: (-len(p), p)))
+
+
+def _wanted_at(s: ParseState, i: int) -> Result:
+    """ "I'd like you over at the charging dock", "I need you at the entrance", "we want you back
+    in the kitchen": a walk there (a place after "at", "in", "by" or "to", perhaps after "over",
+    "back", "down"); None for anything else ("I need you to ..." is read as politeness)."""
+    wanted = s.phrase_at(i, _WANTED_BY_FIRST)
+    if wanted is None:
+        return None
+    k = i + len(wanted)
+    if s.at(k) in ("over", "back", "down", "up", "out"):
+        k += 1
+    if s.at(k) not in ("at", "in", "by", "to", "near", "inside") or s.at(k + 1) in ALL_VERBS:
+        return None
+    return _another_place(s, k + 1)
 
 
 def _another_amount(s: ParseState, i: int) -> Result:

@@ -56,6 +56,7 @@ from .lexicon import (
     PAST,
     PAUSE_SPANS_BY_FIRST,
     PLAIN_STOPS,
+    POLITE_BY_FIRST,
     RETRACTIONS_BY_FIRST,
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
@@ -488,8 +489,15 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     if i == 0 or s.toks[i - 1] not in (",", "but", "so"):
         return False
     k = i
-    while k < i + 3 and (s.at(k) in _BEFORE_A_STOP or s.at(k) in s.vocatives):  # "..., but please just stop",
-        k += 1  # "..., actually Stuart stop right there"
+    while k < i + 8:  # "..., but please just stop", "..., actually Stuart stop right there", "... but right now
+        if s.at(k) in _BEFORE_A_STOP or s.at(k) in s.vocatives:  # I need you to just freeze where you are"
+            k += 1
+        elif s.at(k) in POLITE_BY_FIRST and (polite := s.phrase_at(k, POLITE_BY_FIRST)) is not None:
+            k += len(polite)
+        elif (s.at(k) == "right" and s.at(k + 1) == "now") or (s.at(k) in MODALS and s.at(k + 1) == "you"):
+            k += 2  # "... but could you please stop"
+        else:
+            break
     end = _stop_phrase_end(s, k)
     return end > 0 and _stop_ends(s, end)
 

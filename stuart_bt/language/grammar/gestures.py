@@ -17,7 +17,7 @@ from .lexicon import (
     GESTURES_BY_FIRST,
     STRONG_VERBS,
 )
-from .state import ParseState, Result
+from .state import ParseState, Result, starts_a_stop
 
 
 def skip_gesture_tail(s: ParseState, j: int) -> int:
@@ -27,6 +27,8 @@ def skip_gesture_tail(s: ParseState, j: int) -> int:
     while j < n and toks[j] not in BOUNDARY:
         if toks[j] in STRONG_VERBS and toks[j] not in ("wave",) and j + 1 < n and toks[j + 1] not in BOUNDARY:
             break
+        if starts_a_stop(s, j):
+            break  # "wave at the visitors stop": the stop is read, and wins
         if toks[j] == "with" and _one_hand(s, j + 1):
             break  # "wave with your right hand": a gesture plays as it was made, so the robot asks
         j += 1

@@ -25,7 +25,7 @@ SPLITS: dict[str, tuple[str, ...]] = {
     "lookfor": ("look", "for"), "okay": ("ok",), "alright": ("ok",), "estop": ("e", "stop"),
     "anticlockwise": ("anticlockwise",), "counterclockwise": ("anticlockwise",),
     "metres": ("metres",),
-    "gimme": ("give", "me"), "lemme": ("let", "me"), "gonna": ("going", "to"),
+    "gimme": ("give", "me"), "lemme": ("let", "me"), "gonna": ("going", "to"), "ya": ("you",),
 }
 
 HARD_STOPS = frozenset({".", ";", "!", "?"})
@@ -117,6 +117,9 @@ SIGN_OFFS: tuple[tuple[str, ...], ...] = (
     # hedges that close a sentence without adding to it
     ("you", "know"), ("know", "what", "i", "mean"),
     ("you", "know", "what", "i", "mean"), ("if", "you", "know", "what", "i", "mean"), ("yeah",), ("innit",),
+    # a greeting said after a command ("shake my hand, nice to meet you")
+    *((how, "to", verb, "you") for how in ("nice", "pleased", "good", "lovely", "great") for verb in ("meet", "see")),
+    ("if", "you", "please"),
     # an amount said roughly ("ninety degrees or so", "two metres, give or take")
     ("or", "so"), ("or", "thereabouts"), ("give", "or", "take"), ("more", "or", "less"),
 )
@@ -170,6 +173,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("i", "was", "wondering", "whether", "you", "could"), ("i", "was", "hoping", "you", "could"),
     ("i", "hope", "you", "can"), ("any", "chance", "you", "could"), ("is", "there", "any", "chance", "you", "could"),
     ("would", "you", "kindly"), ("be", "a", "dear", "and"), ("be", "a", "good", "robot", "and"),
+    ("feel", "free", "to"), ("you", "may"), ("you", "are", "welcome", "to"), ("youre", "welcome", "to"),
     ("now",), ("ok",), ("so",), ("well",), ("yes",), ("yeah",), ("also",),
     ("hey",), ("quickly",), ("quick",), ("right", "now"), ("maybe",), ("perhaps",), ("actually",), ("oh",),
     ("go", "ahead", "and"), ("lets",), ("let", "us"), ("let", "me", "see", "you"),

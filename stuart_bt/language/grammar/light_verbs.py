@@ -14,6 +14,7 @@ from .amounts import NUMBER_STARTS, STEP_WORDS, read_move, read_turn_terms
 from .finding import read_find_noun
 from .gestures import skip_gesture_tail
 from .lexicon import (
+    ALL_VERBS,
     AROUND,
     BOUNDARY,
     DETERMINERS,
@@ -42,6 +43,8 @@ def read_do(s: ParseState, i: int) -> Result:
     led = _led_somewhere(s, verb, i)
     if led is not None:
         return led.result
+    if verb == "show" and s.at(i + 2) == "how" and s.at(i + 3) in ("you", "to") and s.at(i + 4) in ALL_VERBS:
+        return s.read_clause(s, i + 4)  # "show me how you shake hands": do it
     j = _past_audience(s, i + 1)
     k = _past_modifiers(s, j)
     g = s.phrase_at(k, GESTURES_BY_FIRST)

@@ -13,6 +13,7 @@ from .lexicon import (
     CONDITIONS,
     CORRECTIONS_BY_FIRST,
     DETERMINERS,
+    PLAIN_STOPS,
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
     STRONG_VERBS,
@@ -103,6 +104,14 @@ def may_end(s: ParseState, j: int) -> bool:
 _RECEIVERS = frozenset({"me", "us", "them", "him", "her", "everyone", "everybody", "people", "the"})
 
 
+def starts_a_stop(s: ParseState, j: int) -> bool:
+    """Whether a stop is said at ``j`` among words that only say more about a command ("... wave
+    at the visitors stop", "... and wave freeze", "... actually hold it"): the words that only
+    colour a command end there, so the stop is read (and wins)."""
+    t = s.toks[j]
+    return t in PLAIN_STOPS or (t in ("hold", "hang") and s.at(j + 1) in ("it", "on"))
+
+
 def skip_rest(s: ParseState, j: int) -> int:
     """After a clause: skip words the grammar does not use ("at the door", "quickly") up to the
     next connector, a purpose "to <verb>", or a new verb that starts a command."""
@@ -123,7 +132,7 @@ def skip_rest(s: ParseState, j: int) -> int:
                 break  # "turn left just kidding": the driver decides whether it takes the turn back
             if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
                 break
-            if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to":
+            if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" or starts_a_stop(s, j):
                 break
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
                 break  # "... the corner do a high five", "... give everyone a wave": the next command
