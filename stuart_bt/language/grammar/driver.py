@@ -66,7 +66,7 @@ from .lexicon import (
 )
 from .motion import UNTIL_VERBS
 from .nouns import read_arrival
-from .state import Defaults, ParseState, Spec, may_end, skip_rest
+from .state import Defaults, ParseState, Spec, may_end, skip_rest, starts_a_stop
 from .tokens import Tokens, tokenize
 
 
@@ -433,8 +433,9 @@ class _CommandReader:
         if opens and not topic:
             self.dead = True
         self.i += 1
-        while self.i < s.n and toks[self.i] not in BOUNDARY and not (self.dead and _stop_said_at(s, self.i)):
-            self.i += 1  # "you're late so just stop": the talk ends where a stop is said
+        while self.i < s.n and toks[self.i] not in BOUNDARY and not (
+                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i)):
+            self.i += 1  # "you're late so just stop": the talk ends where a stop is said; "do a dance stop" too
         if self.dead:
             self._mark(start, self.i, TALK)
         elif topic:  # "the kitchen, go there": what "there" will mean

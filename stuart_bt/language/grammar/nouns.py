@@ -23,7 +23,7 @@ from .lexicon import (
     VERB_PARTICLES,
     WH,
 )
-from .state import ParseState, Result
+from .state import ParseState, Result, starts_a_stop
 
 
 def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
@@ -51,8 +51,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
                 j += 1  # "the right cup", "right kiss" read by other rules first
                 continue
             break
-        if j > i and (t in STRONG_VERBS or _another_phrase_at(toks, i, j)):
-            break
+        if j > i and (t in STRONG_VERBS or _another_phrase_at(toks, i, j) or starts_a_stop(s, j)):
+            break  # ("go to the kitchen hold it": the stop is read, and wins)
         if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
             break
         if j > i and t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
