@@ -58,6 +58,9 @@ CORRECTION_MARGIN = 0.75
 # put back where it was said trailed by 0.03-0.6; "hey Stephen, ..." and "hey Steve, ..." said
 # to someone else, were they not ruled out before, trailed by 0.37-0.74.
 REPAIR_MARGIN = 0.5
+# How far behind the reading heard another may be and still be acted on: the language stage's
+# READING_MARGIN (stuart_bt.language.readings; hearing comes before language and imports none of it)
+COMMAND_MARGIN = 0.15
 
 
 class SecondOpinion:
@@ -112,10 +115,23 @@ class SecondOpinion:
         return round(heard.avg_logprob + ours - theirs, 4)
 
     def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
+        pattern = self._matcher(vocabulary)
+        return any(pattern.fullmatch(normalise(text)) for text, _ in heard.readings())
+
+    def _matcher(self, vocabulary: Vocabulary) -> re.Pattern[str]:
         pattern = self._matchers.get(vocabulary)
         if pattern is None:
             pattern = self._matchers[vocabulary] = matcher(vocabulary)
-        return any(pattern.fullmatch(normalise(text)) for text, _ in heard.readings())
+        return pattern
+
+    def heard_as_command(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
+        """Whether a reading the robot may act on is a sentence of the command grammar: the one
+        heard, or one within :data:`COMMAND_MARGIN` of it (a correction kept last, far behind,
+        is none). :func:`~.pipeline.transcribe` hears an utterance again when this is False."""
+        pattern = self._matcher(vocabulary)
+        best = heard.avg_logprob
+        return any(score >= best - COMMAND_MARGIN and pattern.fullmatch(normalise(text))
+                   for text, score in heard.readings())
 
 
 def _heard_as(heard: Transcript, text: str, score: float, seconds: float) -> Transcript:
