@@ -53,3 +53,14 @@ def test_a_spin_said_more_than_once_is_whole_spins_and_too_many_are_asked_about(
     assert [round(i.yaw, 3) for i in thrice.intents] == [round(6 * math.pi, 3)] and thrice.doubt
     assert [round(i.yaw, 3) for i in Parser().parse("Stuart, turn left three times").intents] == [
         round(3 * math.pi / 2, 3)]  # a turn is a quarter turn each time
+
+
+@pytest.mark.parametrize("text,want", [
+    ("forward two metres then right ninety", [("move_relative", 2, 0, 0),
+                                              ("turn_by_angle", 0, 0, round(-math.pi / 2, 3))]),
+    ("forward one point five then left then forward one", [
+        ("move_relative", 1.5, 0, 0), ("turn_by_angle", 0, 0, round(math.pi / 2, 3)), ("move_relative", 1, 0, 0)]),
+    ("move forward two metres, then left one metre", [("move_relative", 2, 0, 0), ("move_relative", 0, 1, 0)]),
+])
+def test_a_side_said_after_a_move_with_no_distance_is_a_turn_and_a_forward_after_a_turn_a_move(text, want):
+    assert steps(text) == want

@@ -192,6 +192,18 @@ def test_the_name_last_after_a_pause_addresses_what_came_before_it(utterance, co
     assert got.wake and got.command == command and got.intents, got
 
 
-@pytest.mark.parametrize("utterance", ["I was talking to Stuart", "go to the kitchen stuart"])
-def test_the_name_last_without_a_pause_before_it_does_not_wake(utterance):
+@pytest.mark.parametrize("utterance", ["I was talking to Stuart", "we took a photo with stuart"])
+def test_the_name_last_without_a_pause_after_words_about_it_does_not_wake(utterance):
     assert not Parser().parse(utterance).wake
+
+
+@pytest.mark.parametrize("utterance,woke", [
+    ("could you clap for us stuart", True), ("turn left please stewart", True),
+    ("could you go to the kitchen stuart?", True), ("where are you stuart", True), ("go to the kitchen stuart", True),
+    ("go and say hello to stuart", False), ("I told the visitors about stuart", False),
+    ("the kids really like stuart", False), ("wave at stuart", False),
+])
+def test_the_name_last_with_no_pause_wakes_only_after_words_said_to_the_robot(utterance: str, woke: bool) -> None:
+    from stuart_bt.language.parse import Parser
+
+    assert Parser().parse(utterance).wake is woke

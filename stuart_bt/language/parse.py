@@ -86,7 +86,23 @@ class Parser:
         wake = self.wake_filter.match(utterance)
         if wake.unpaused and self._said_to_the_robot(wake.command):
             wake.woke = True
+        elif not wake.woke and not wake.unpaused:
+            return self._name_last(utterance) or wake
         return wake
+
+    def _name_last(self, utterance: str) -> WakeMatch | None:
+        """The name as the last word with no pause before it, after a request to the robot
+        ("could you clap for us stuart", as recognisers write it): a wake when the words before
+        it are said to the robot (as for the name first with no pause after it), and the word
+        just before the name is no preposition ("wave to stuart" is about it)."""
+        words = utterance.rstrip(_END).rsplit(maxsplit=2)
+        if len(words) < 3 or words[-2].lower() in _ABOUT_IT or not self._is_name(words[-1].lower()):
+            return None
+        rest = utterance.rstrip(_END)[:-len(words[-1])].rstrip(" ,")
+        if not self._said_to_the_robot(rest):
+            return None
+        return WakeMatch(True, rest + ("?" if utterance.rstrip().endswith("?") else ""), words[-1], words[-1].lower(),
+                         self.wake_filter.distance(words[-1].lower()))
 
     def _said_to_the_robot(self, rest: str) -> bool:
         reading = self.grammar.read(rest)
@@ -134,6 +150,11 @@ class Parser:
         return ParseResult(command, False, command, reading.intents, not reading.intents, covered,
                            doubts(reading.intents, covered, self.limits))
 
+
+_END = " \t\r\n.!?,;:"  # what a sentence may end with after its last word
+# words after which the name is spoken of, not to ("wave to stuart", "a photo with stuart")
+_ABOUT_IT = frozenset({"to", "at", "with", "about", "for", "from", "like", "of", "and", "or", "by", "than", "tell",
+                       "ask", "meet", "is", "was", "the", "a"})
 
 _DEFAULT: Parser | None = None
 

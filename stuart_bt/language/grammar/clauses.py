@@ -15,12 +15,14 @@ from .gestures import read_gesture, skip_gesture_tail
 from .lexicon import (
     ALL_VERBS,
     AUX,
+    BACKWARD,
     BOUNDARY,
     CONNECTORS_BY_FIRST,
     COPULA,
     DETERMINERS,
     DIRECTIONS,
     FIND_VERBS,
+    FORWARD,
     GESTURE_NOUNS,
     GESTURE_PHRASES,
     GESTURE_VERBS,
@@ -432,12 +434,17 @@ def _wanted_at(s: ParseState, i: int) -> Result:
 
 def _another_amount(s: ParseState, i: int) -> Result:
     """ "... then right", "forward two metres", "left 90": a move or a turn with no verb, first
-    in the command or after a move or a turn (a bare "left 90" is degrees, never 90 m)."""
+    in the command or after a move or a turn (a bare "left 90" is degrees, never 90 m; a side
+    with no distance is a turn: "forward two metres then left" turns, as "left" alone first in
+    a command would)."""
     t, last = s.toks[i], s.last_action
-    turnish = last in (TURN, TURN_AROUND)
-    if not turnish and s.first:
-        direction, amount, dim, vague, _ = read_motion_terms(s, i)
-        if amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
+    direction, amount, dim, vague, _ = read_motion_terms(s, i)
+    if direction in (FORWARD, BACKWARD):
+        turnish = False  # "... then left then forward one": a move, even after a turn
+    elif last in (TURN, TURN_AROUND):
+        turnish = True
+    else:
+        if s.first and amount is None and not vague and direction in (LEFT, RIGHT) and t in ("left", "right"):
             return None  # "right." alone is an acknowledgement as often as a command
         turnish = dim == ANGLE or (direction in (LEFT, RIGHT) and (amount is None or (
             dim == "" and amount > MAX_BARE_SIDESTEP_M)))
