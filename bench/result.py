@@ -105,7 +105,12 @@ class Result:
 
     @property
     def met(self) -> bool | None:
-        return None if self.goal is None else self.goal.met(self.value, self.ratio)
+        """The goal judged on the figures as written (rounded to 4 decimals), so that a report
+        never says a ratio of 1.05 missed a goal of <= 1.05 (the unrounded 1.050004 did)."""
+        if self.goal is None:
+            return None
+        ratio = self.ratio
+        return self.goal.met(round(self.value, 4), None if ratio is None else round(ratio, 4))
 
     @property
     def benchmark(self) -> str:

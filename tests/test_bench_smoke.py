@@ -145,3 +145,10 @@ def test_a_bound_is_judged_on_the_value_and_a_ratio_goal_without_anchor_on_nothi
     assert Result("ik.pin.time_median", 0.5, "ms", None, Goal(6.2), note="no placo").met is None
     with pytest.raises(ValueError, match="not one of"):
         Goal(1.0, "=<")
+
+
+def test_a_goal_is_judged_on_the_figures_as_written():
+    at_the_limit = Result("web.tick_overhead.flip-10", 1.050004, "us/node/tick", Anchor("raw", 1.0), Goal(1.05))
+    assert at_the_limit.to_dict()["ratio"] == 1.05 and at_the_limit.met is True
+    over = Result("web.tick_overhead.flip-10", 1.0501, "us/node/tick", Anchor("raw", 1.0), Goal(1.05))
+    assert over.met is False

@@ -124,7 +124,8 @@ class _CommandReader:
     them ask for (a correction, a reordering, a clause held until the next one is in)."""
 
     __slots__ = ("after_subordinate", "clause_end", "conditional", "correct_at", "dead", "held", "hold", "i", "marks",
-                 "out", "reorder_at", "retract_at", "s", "tagged", "taken_back", "text", "tokens", "toks")
+                 "out", "reorder_at", "retract_at", "s", "sentence_at", "tagged", "taken_back", "text", "tokens",
+                 "toks")
 
     def __init__(self, grammar: Grammar, text: str, tokens: Tokens) -> None:
         self.text, self.tokens = text, tokens
@@ -145,6 +146,7 @@ class _CommandReader:
         self.conditional = False  # an "if" clause came before a command: the robot cannot check it
         self.after_subordinate = False  # the clause before was "when you get there": a stop after it is a step
         self.taken_back = False  # everything asked was just taken back: "..., never mind, forget it" says it again
+        self.sentence_at = 0  # where this sentence's intents begin: "X and Y, but first Z" puts Z before both
 
     def read(self) -> list[TaskIntent]:
         """The intents, in order; ``marks`` then says which tokens they came from."""
@@ -171,6 +173,7 @@ class _CommandReader:
         if t in HARD_STOPS:
             self.dead = False
             self.i += 1
+            self.sentence_at = len(self.out)
             return True
         if t in s.vocatives and not self.dead:
             self._mark(self.i, self.i + 1, USED)  # "..., actually Stuart stop right there": the name again
@@ -221,7 +224,7 @@ class _CommandReader:
             if self.out:  # "turn left, or maybe right": which one is meant? every word of the choice is unsure
                 self._mark(offered, self.i, CHOICE)
         elif kind == "reorder" and self.out:
-            self.reorder_at = len(self.out) - _last_clause_len(self.out)
+            self.reorder_at = min(self.sentence_at, len(self.out))  # "go there and wave, but first turn around"
         return True
 
     def _corrects_after(self, i: int) -> bool:
@@ -338,6 +341,8 @@ class _CommandReader:
             self._mark(start, j, USED)
             self.i = self.clause_end = skip_rest(s, j)
             return
+        if start > 0 and self.toks[start - 1] == "but" and self.out and _first_after(self.toks, j):
+            self.reorder_at = min(self.sentence_at, len(self.out))  # "..., but turn around first"
         a, b = self.tokens.span(start, min(j, s.n) - 1)
         self._place([TaskIntent(act, tg, x, y, yaw, self.text[a:b]) for act, tg, x, y, yaw in specs])
         self._mark_read(start, j)
@@ -636,6 +641,17 @@ def _says_which(words: list[str]) -> bool:
     """A phrase after a target that says which thing or place is meant ("on the counter"), not
     when ("in an hour") or how ("with your teeth", "on one leg")."""
     return _NOT_WHICH.isdisjoint(words)
+
+
+def _first_after(toks: list[str], j: int) -> bool:
+    """Whether "first" is said after a clause's words, before the next connector ("turn around
+    first", "turn around first please"): the clause goes before the others."""
+    for t in toks[j:j + 4]:
+        if t == "first":
+            return True
+        if t in BOUNDARY:
+            return False
+    return False
 
 
 def _last_clause_len(out: list[TaskIntent]) -> int:

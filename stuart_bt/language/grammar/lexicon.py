@@ -174,6 +174,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("i", "hope", "you", "can"), ("any", "chance", "you", "could"), ("is", "there", "any", "chance", "you", "could"),
     ("would", "you", "kindly"), ("be", "a", "dear", "and"), ("be", "a", "good", "robot", "and"),
     ("feel", "free", "to"), ("you", "may"), ("you", "are", "welcome", "to"), ("youre", "welcome", "to"),
+    ("basically",), ("literally",), ("honestly",), ("seriously",), ("essentially",), ("simply",), ("anyway",),
     ("now",), ("ok",), ("so",), ("well",), ("yes",), ("yeah",), ("also",),
     ("hey",), ("quickly",), ("quick",), ("right", "now"), ("maybe",), ("perhaps",), ("actually",), ("oh",),
     ("go", "ahead", "and"), ("lets",), ("let", "us"), ("let", "me", "see", "you"),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..intents import NAVIGATE
 from ..numbers import word_value
 from .lexicon import (
+    ADDRESS_TERMS,
     ALL_VERBS,
     BOUNDARY,
     DETERMINERS,
@@ -65,6 +66,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     words = toks[i:j]
     while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS or words[0] in ("like", ",")):
         words = words[1:]  # ("the, like, reading room": a filler after the determiner)
+    if len(words) > 1 and words[-1] in ADDRESS_TERMS and (j >= n or toks[j] in BOUNDARY):
+        words = words[:-1]  # "go find the apple buddy": the one spoken to, not part of the thing
     return words, j
 
 
