@@ -114,24 +114,19 @@ class SecondOpinion:
         ours, theirs = self.whisper.score([text, heard.text], vocabulary)
         return round(heard.avg_logprob + ours - theirs, 4)
 
-    def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
-        pattern = self._matcher(vocabulary)
-        return any(pattern.fullmatch(normalise(text)) for text, _ in heard.readings())
-
-    def _matcher(self, vocabulary: Vocabulary) -> re.Pattern[str]:
+    def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary, margin: float = math.inf) -> bool:
+        """Whether a reading at most ``margin`` behind the one heard is a sentence of the command grammar."""
         pattern = self._matchers.get(vocabulary)
         if pattern is None:
             pattern = self._matchers[vocabulary] = matcher(vocabulary)
-        return pattern
+        least = heard.avg_logprob - margin
+        return any(score >= least and pattern.fullmatch(normalise(text)) for text, score in heard.readings())
 
     def heard_as_command(self, heard: Transcript, vocabulary: Vocabulary) -> bool:
         """Whether a reading the robot may act on is a sentence of the command grammar: the one
         heard, or one within :data:`COMMAND_MARGIN` of it (a correction kept last, far behind,
         is none). :func:`~.pipeline.transcribe` hears an utterance again when this is False."""
-        pattern = self._matcher(vocabulary)
-        best = heard.avg_logprob
-        return any(score >= best - COMMAND_MARGIN and pattern.fullmatch(normalise(text))
-                   for text, score in heard.readings())
+        return self._in_grammar(heard, vocabulary, COMMAND_MARGIN)
 
 
 def _heard_as(heard: Transcript, text: str, score: float, seconds: float) -> Transcript:

@@ -29,6 +29,8 @@ _GROUPS = "folks|guys|everyone|everybody|kids|children|people|team|ladies|gentle
 
 _GROUP_WORDS = frozenset(_GROUPS.split("|"))
 
+_WORD = re.compile(r"\s*([A-Za-z']+)")  # the first word at a position
+
 # a capitalised word or a group after the start or a pause (". ", "! ", "? ", "; ", " - "), then a comma
 _VOCATIVE = re.compile(rf"(?:^|(?<=[.!?;:])\s+|\s*[-–—]+\s*)([A-Z][a-z]+|(?i:{_GROUPS})),\s*")
 
@@ -94,7 +96,7 @@ def said_to_the_robot(command: str, is_robot: Callable[[str], bool]) -> str:
         parts.append(". ")  # a new sentence: nothing said to someone else continues a command
     if to_robot:
         parts.append(command[at:])
-    return "".join(parts).strip(" .") or ""
+    return "".join(parts).strip(" .")
 
 
 def turned_to_the_robot(utterance: str, is_robot: Callable[[str], bool]) -> str | None:
@@ -110,5 +112,5 @@ def turned_to_the_robot(utterance: str, is_robot: Callable[[str], bool]) -> str 
 
 
 def _first_word(text: str, at: int) -> str:
-    m = re.match(r"\s*([A-Za-z']+)", text[at:at + 40])
+    m = _WORD.match(text, at)
     return m.group(1).lower().replace("'", "") if m else ""

@@ -66,7 +66,7 @@ from .lexicon import (
 )
 from .motion import UNTIL_VERBS
 from .nouns import read_arrival
-from .state import Defaults, ParseState, Spec, may_end, skip_rest, starts_a_stop
+from .state import Defaults, ParseState, Spec, may_end, skip_rest, starts_a_stop, stop_phrase_end
 from .tokens import Tokens, tokenize
 
 
@@ -504,18 +504,8 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
             k += 2  # "... but could you please stop"
         else:
             break
-    end = _stop_phrase_end(s, k)
+    end = stop_phrase_end(s, k)
     return end > 0 and _stop_ends(s, end)
-
-
-def _stop_phrase_end(s: ParseState, k: int) -> int:
-    """Where a stop said at ``k`` ends: after "stop", "freeze", "halt" (and "moving", "it",
-    "everything" after them) or "hold it" / "hold on" / "hold still"; 0 when none is said there."""
-    if s.at(k) in PLAIN_STOPS:
-        return k + 2 if s.at(k + 1) in ("move", "moving", "it", "everything") else k + 1  # "moving" reads as "move"
-    if s.at(k) in ("hold", "hang") and s.at(k + 1) in ("it", "on", "still", "up"):
-        return k + 2
-    return 0
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:

@@ -104,12 +104,21 @@ def may_end(s: ParseState, j: int) -> bool:
 _RECEIVERS = frozenset({"me", "us", "them", "him", "her", "everyone", "everybody", "people", "the"})
 
 
+def stop_phrase_end(s: ParseState, k: int) -> int:
+    """Where a stop said at ``k`` ends: after "stop", "freeze", "halt" (and "moving", "it",
+    "everything" after them) or "hold it" / "hold on" / "hold still"; 0 when none is said there."""
+    if s.at(k) in PLAIN_STOPS:
+        return k + 2 if s.at(k + 1) in ("move", "moving", "it", "everything") else k + 1  # "moving" reads as "move"
+    if s.at(k) in ("hold", "hang") and s.at(k + 1) in ("it", "on", "still", "up"):
+        return k + 2
+    return 0
+
+
 def starts_a_stop(s: ParseState, j: int) -> bool:
     """Whether a stop is said at ``j`` among words that only say more about a command ("... wave
     at the visitors stop", "... and wave freeze", "... actually hold it"): the words that only
     colour a command end there, so the stop is read (and wins)."""
-    t = s.toks[j]
-    return t in PLAIN_STOPS or (t in ("hold", "hang") and s.at(j + 1) in ("it", "on"))
+    return stop_phrase_end(s, j) > 0
 
 
 def skip_rest(s: ParseState, j: int) -> int:
