@@ -56,3 +56,15 @@ def test_a_group_called_after_a_command_is_someone_else(parser):
         ("navigate_to_marker", "drone cage")]
     text = "Stuart, go to the entrance - watch your step, folks - thanks."
     assert did(parser, text) == [("navigate_to_marker", "entrance")] and parser.parse(text).doubt == []
+
+
+def test_the_robot_named_after_thanks_with_no_pause_gets_what_follows(parser):
+    text = "stella can you get the lights thanks stuart go to the robot arms"
+    assert did(parser, text) == [("navigate_to_marker", "robot arms")]
+    assert did(parser, "ok so stuart go to the kitchen") == [("navigate_to_marker", "kitchen")]
+
+
+@pytest.mark.parametrize("text", ["me and stuart go to the kitchen every day", "I told stuart go to the kitchen",
+                                  "thanks stuart that was great", "ok so stuart is going to the kitchen now"])
+def test_the_robot_named_inside_talk_with_no_pause_is_spoken_about(parser, text):
+    assert did(parser, text) == []

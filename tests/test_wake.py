@@ -207,3 +207,20 @@ def test_the_name_last_with_no_pause_wakes_only_after_words_said_to_the_robot(ut
     from stuart_bt.language.parse import Parser
 
     assert Parser().parse(utterance).wake is woke
+
+
+@pytest.mark.parametrize("utterance,action", [
+    ("Oh wow, Stuart, go to the 3D printers!", "navigate_to_marker"),
+    ("oh no Stuart, you're heading straight for the bags, stop, stop!", "stop"),
+    ("um so like stuart pick up the bottle you know", "pick_up"),
+    ("oops stuart turn around", "turn_around"),
+    ("gosh, Stuart, clap", "gesture"),
+])
+def test_exclamations_and_discourse_words_before_the_name_change_nothing(utterance, action):
+    got = Parser().parse(utterance)
+    assert got.wake and [i.action for i in got.intents] == [action], got
+
+
+@pytest.mark.parametrize("utterance", ["Wait, Stuart!", "Whoa, whoa, whoa, Stuart!"])
+def test_a_stop_before_the_name_is_no_filler(utterance):
+    assert [i.action for i in Parser().parse(utterance).intents] == ["stop"]

@@ -30,6 +30,9 @@ def test_a_way_the_robot_cannot_choose_is_asked_about(parser, text, want):
     ("Stuart, could you clap for the children?", ("gesture", "clap")),
     ("Stuart, please high five this young lady", ("gesture", "high five")),
     ("Stuart, look for the cup", ("find", "cup")),
+    ("hey stuart put your hands together for our speaker", ("gesture", "clap")),
+    ("Stuart, shake hands with Dr. Okafor.", ("gesture", "shake hand")),
+    ("Stuart, high five to the kids", ("gesture", "high five")),
 ])
 def test_whom_it_is_for_changes_nothing(parser, text, want):
     result = parser.parse(text)
@@ -38,3 +41,14 @@ def test_whom_it_is_for_changes_nothing(parser, text, want):
 
 def test_a_time_after_for_is_still_asked_about(parser):
     assert parser.parse("Stuart, turn around for a minute").doubt
+
+
+def test_a_time_of_day_after_whom_a_gesture_is_for_is_asked_about(parser):
+    result = parser.parse("stuart wave to the visitors at half past two")
+    assert [i.target for i in result.intents] == ["wave"] and result.doubt
+
+
+def test_a_gesture_done_before_the_next_step_may_be_said_in_the_perfect(parser):
+    result = parser.parse("Stuart, after you've shaken his hand, go back to the charging dock.")
+    assert [(i.action, i.target) for i in result.intents] == [("gesture", "shake hand"),
+                                                               ("navigate_to_marker", "charging dock")]

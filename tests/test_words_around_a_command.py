@@ -22,3 +22,24 @@ def test_words_that_change_nothing_are_neither_targets_nor_doubt(text, want):
 
 def test_a_name_that_is_part_of_a_place_stays():
     assert [i.target for i in Parser().parse("stuart go to the charging dock").intents] == ["charging dock"]
+
+
+@pytest.mark.parametrize("text,want", [
+    ("hey stuart um go to the like the humanoid corner you know", [("navigate_to_marker", "humanoid corner")]),
+    ("hey stuart go to like the kitchen", [("navigate_to_marker", "kitchen")]),
+    ("stuart find the apple its my lunch", [("find", "apple")]),
+    ("Stuart, find the apple, it's my lunch.", [("find", "apple")]),
+    ("Stuart, go to the workbench, Dr Patel needs you there.", [("navigate_to_marker", "workbench")]),
+    ("Stuart, pick up the cup, Sam wants it.", [("pick_up", "cup")]),
+    ("stuart um hands up everybody's watching", [("gesture", "hands up")]),
+    ("stuart after you pick up the book take it to the reading room",
+     [("pick_up", "book"), ("navigate_to_marker", "reading room")]),
+])
+def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
+    result = Parser().parse(text)
+    assert [(i.action, i.target) for i in result.intents] == want and result.doubt == [], text
+
+
+@pytest.mark.parametrize("text", ["stuart go to the bathroom scratch that", "Stuart, turn left, my bad"])
+def test_a_correction_with_nothing_after_it_takes_the_command_back(text):
+    assert Parser().parse(text).intents == []

@@ -24,6 +24,7 @@ resolved against whichever map the robot is on.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -122,6 +123,8 @@ class Parser:
         wake = self.wake_match(utterance)
         if not wake.woke:
             turned = turned_to_the_robot(utterance, self._is_name) if "," in utterance else None
+            if turned is None:
+                turned = self._named_after_a_hand_over(utterance)
             if turned is not None:  # "Sam, grab the extinguisher - Stuart, stop where you are"
                 return self._command(utterance, True, turned)
             if not self.require_wake:
@@ -131,6 +134,19 @@ class Parser:
         if "," in command:  # "go to the reading room. Anna, can you follow him?": Anna's part is not ours
             command = said_to_the_robot(command, self._is_name)
         return self._command(utterance, True, command)
+
+    def _named_after_a_hand_over(self, utterance: str) -> str | None:
+        """What follows the name said inside the utterance with no pause around it, right after a
+        word that closes talk with someone else ("stella can you get the lights thanks stuart go
+        to the robot arms", as recognisers write it), when it is said to the robot; else None."""
+        words = list(_WORDS.finditer(utterance))
+        initial = self.wake_filter.name[:1].lower()
+        for k in range(1, len(words) - 1):
+            word = words[k].group().lower()  # (spelled with the name's first letter: cheap to rule out)
+            if word[:1] == initial and words[k - 1].group().lower() in _HAND_OVER and self._is_name(word):
+                rest = utterance[words[k].end():].strip(" ,")
+                return rest if self._said_to_the_robot(rest) else None
+        return None
 
     def _is_name(self, word: str) -> bool:
         """Whether a word (lower case) is the robot's name as the wake filter hears names."""
@@ -155,6 +171,10 @@ _END = " \t\r\n.!?,;:"  # what a sentence may end with after its last word
 # words after which the name is spoken of, not to ("wave to stuart", "a photo with stuart")
 _ABOUT_IT = frozenset({"to", "at", "with", "about", "for", "from", "like", "of", "and", "or", "by", "than", "tell",
                        "ask", "meet", "is", "was", "the", "a"})
+
+# words that close talk with someone else, after which the robot's name turns to it
+_HAND_OVER = frozenset({"thanks", "cheers", "ok", "okay", "alright", "right", "now", "so"})
+_WORDS = re.compile(r"[A-Za-z']+")
 
 _DEFAULT: Parser | None = None
 

@@ -41,6 +41,9 @@ FILLERS: frozenset[str] = frozenset({
     "um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "em", "hm", "hmm", "hmmm", "mm", "mmm",
     "ah", "ahh", "oh", "ooh", "so", "well", "yeah", "yes", "right", "alright", "now", "and", "but",
     "there", "dear", "please", "then",
+    # exclamations and discourse words before the name ("oh wow, Stuart, ...", "um so like stuart ...")
+    "wow", "like", "no", "oops", "yikes", "gosh", "oi", "aw", "aww", "listen",
+    "actually", "anyway",
     # thanks or praise before the name ("Thanks Stuart, you can go back to the dock now")
     "thanks", "cheers", "sorry", "great", "perfect", "brilliant", "excellent", "lovely", "cool", "nice",
 })

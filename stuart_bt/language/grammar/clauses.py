@@ -133,6 +133,8 @@ def _polite(s: ParseState, i: int) -> int:
                 p == ("like",) and s.at(i + 1) in MODALS and s.at(i + 2) == "you"):
             break  # "like" is a filler only before a verb ("could you like go there") or a request ("like could you")
         i += len(p)
+        if p[0] == "if" and s.at(i) == ",":
+            i += 1  # "if you don't mind, turn around"
     return i
 
 
@@ -211,12 +213,28 @@ def opens_conversation(s: ParseState, i: int) -> bool:
         return True
     if i + 1 < n and (toks[i + 1] in AUX or toks[i + 1] in _REPORTED) and t not in ALL_VERBS and t not in BOUNDARY:
         return True  # "..., Jess is filming", "Ana said you'd go ...": a name and its verb, a statement
+    if names_a_doer(s, i):
+        return True
     if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
         return True
-    if s.contracted and any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY
+    if s.contracted and any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY and _no_verb_before(s, i, k)
                             for k in range(i, min(i + 3, n))):
         return True  # "your battery's low", "the coffee's ready": a noun and "is", a statement
     return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
+
+
+def _no_verb_before(s: ParseState, i: int, k: int) -> bool:
+    """Whether no verb or gesture is said from ``i`` to ``k``: "hands up everybody's watching" is a
+    gesture and then a statement, "your battery's low" a statement from its first word."""
+    return all(s.toks[m] not in ALL_VERBS and s.toks[m] not in GESTURES_BY_FIRST for m in range(i, k))
+
+
+def names_a_doer(s: ParseState, i: int) -> bool:
+    """Whether the words at ``i`` are someone named and what they do ("Sam needs you there", "Dr
+    Patel wants the cup"): a statement about a third person, however the person is called."""
+    k = i + 1 if s.toks[i] in _TITLES else i
+    return (s.at(k + 1) in _THIRD_PERSON and s.toks[i] not in ALL_VERBS and s.toks[i] not in BOUNDARY
+            and s.toks[k] not in DETERMINERS)
 
 
 def _asks_a_wish(s: ParseState, i: int) -> bool:
@@ -232,6 +250,17 @@ def _asks_a_wish(s: ParseState, i: int) -> bool:
 # verbs that tell what someone said or thought ("Ana said you'd go to the kitchen"): a report
 _REPORTED = frozenset({"said", "says", "told", "tells", "asked", "asks", "thinks", "thought", "wants", "wanted",
                        "reckons", "mentioned", "promised", "suggested"})
+
+# words that say whom a gesture is for ("put your hands together for our speaker")
+_TO_SOMEONE = frozenset({"for", "to", "at", "with"})
+
+# how people are called before their name ("Dr Patel needs you")
+_TITLES = frozenset({"dr", "doctor", "mr", "mrs", "ms", "miss", "professor", "prof", "mister", "uncle", "aunt",
+                     "auntie", "nurse", "captain", "coach"})
+
+# a third person's verbs that open a statement about them ("Sam needs you there", "mum loves it")
+_THIRD_PERSON = _REPORTED | frozenset({"needs", "likes", "loves", "hates", "knows", "has", "wishes", "prefers",
+                                       "expects", "sends", "says", "waits", "is", "was"})
 
 # personal pronouns: after a verb they open a new sentence rather than make the verb a noun
 _PERSONAL = frozenset({"you", "we", "i", "they", "he", "she", "it", "everyone", "everybody"})
@@ -264,8 +293,9 @@ def read_clause(s: ParseState, i: int) -> Result:
         return _stop_phrase(s, i, sp)
     if t in ("dont", "never") or (t == "do" and s.at(i + 1) == "not") or t == "not":
         return None  # a negated command is no command
-    if t in GESTURES_BY_FIRST and (g := s.phrase_at(i, GESTURES_BY_FIRST)) is not None and len(g) > 1 and may_end(
-            s, i + len(g)):
+    if t in GESTURES_BY_FIRST and (g := s.phrase_at(i, GESTURES_BY_FIRST)) is not None and len(g) > 1 and (
+            may_end(s, i + len(g)) or opens_conversation(s, i + len(g)) or s.at(i + len(g)) in _TO_SOMEONE):
+        # ("hands up everybody's watching", "put your hands together for our speaker")
         return _idiom_or_gesture(s, i)  # "face wave": a gesture's whole name, though it opens with a verb
     handler = _DISPATCH.get(t)
     if handler is not None:
@@ -274,6 +304,8 @@ def read_clause(s: ParseState, i: int) -> Result:
             return got
         if t not in DIRECTIONS and t not in ("back",):
             return None
+    if names_a_doer(s, i):
+        return None  # "..., Dr Patel needs you there": said about someone, no place
     return _verbless(s, i)
 
 
@@ -377,10 +409,12 @@ def _idiom_or_gesture(s: ParseState, i: int) -> Result:
     if g is None or (len(g) == 1 and g[0] in ("five", "kiss", "waves", "kisses")):
         return None
     end = k + len(g)
-    if not may_end(s, end) and len(g) > 1:
+    if s.at(end) in _TO_SOMEONE:
+        end = skip_gesture_tail(s, end)  # "... for our speaker", "... to the kids"
+    elif not may_end(s, end) and len(g) > 1:
         end = _past_recipient(s, end)  # "high five this young man": given to someone
-    if not may_end(s, end):
-        return None
+    if not may_end(s, end) and not (len(g) > 1 and end == k + len(g) and opens_conversation(s, end)):
+        return None  # (the whole name and then a statement: "hands up everybody's watching")
     while end < n and toks[end] in GESTURE_NOUNS:
         end += 1
     return [(GESTURE, GESTURE_PHRASES[g], 0.0, 0.0, 0.0)], end

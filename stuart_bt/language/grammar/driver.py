@@ -61,8 +61,11 @@ from .lexicon import (
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
     STOP_PHRASES_BY_FIRST,
+    SUBJECT_AND_IS,
     SUBORDINATORS,
     TIME_OPENERS,
+    TIMES,
+    TRAILING,
 )
 from .motion import UNTIL_VERBS
 from .nouns import read_arrival
@@ -171,7 +174,7 @@ class _CommandReader:
         """A sentence end, a correction ("no, ..."), or a connector at ``i``: consumed."""
         s, toks, t = self.s, self.toks, self.toks[self.i]
         if t in HARD_STOPS:
-            self.dead = False
+            self.dead = self.conditional = False
             self.i += 1
             self.sentence_at = len(self.out)
             return True
@@ -271,8 +274,9 @@ class _CommandReader:
                 "you", "youve", "youre", "u"):
             self.i += 2
             t = "once"  # "as soon as you get to the kitchen": like "once you ..."
-        if t == "if" and s.at(self.i + 1) == "you" and s.at(self.i + 2) in MODALS:
-            return t, False  # "if you could go to the kitchen": a polite request, no condition
+        if t == "if" and (s.at(self.i + 1) == "you" and s.at(self.i + 2) in MODALS or s.phrase_at(
+                self.i, POLITE_BY_FIRST) is not None):
+            return t, False  # "if you could go to the kitchen", "if you don't mind, ...": polite, no condition
         if not (t in SUBORDINATORS and self.i + 1 < n and (toks[self.i + 1] in ("you", "youve", "youre", "u") or (
                 t == "after" and toks[self.i + 1] in ALL_VERBS))):
             return t, False
@@ -321,6 +325,11 @@ class _CommandReader:
             s.first = False
             self.i = self.clause_end = skip_rest(s, j)
             return
+        if self.conditional and not all(sp[0] == STOP for sp in specs):
+            self._mark(start, j, TALK)  # "if you see the kids, wave at them": the robot cannot wait for a condition
+            self.i = self.clause_end = skip_rest(s, j)  # (a stop needs none: "if you're about to fall, stop")
+            s.first = False
+            return
         if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
             self.dead, self.correct_at, self.reorder_at, self.hold = True, None, None, False
             self._mark(start, j, TALK)
@@ -332,7 +341,8 @@ class _CommandReader:
             self.i = skip_rest(s, j)
             return
         if specs[0][0] == STOP and not subordinate and all(sp[0] == STOP for sp in specs) and (
-                self._interjected(start) or s.at(start + 1) in PLAIN_STOPS or self.toks[start] in _CHANGE_OF_MIND):
+                self._interjected(start) or s.at(start + 1) in PLAIN_STOPS or self.toks[start] in _CHANGE_OF_MIND
+                or not _URGENT.isdisjoint(self.toks[start:j])):
             self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
         restated = self._restated(start, j, specs)
@@ -399,6 +409,8 @@ class _CommandReader:
         statement of their own: they open as one (a subject: "the kids", "we", "Jess is") and
         have a verb before the next connector ("the kids want ...", "we are late")."""
         s = self.s
+        if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS) and s.at(j + 1) not in BOUNDARY:
+            return True  # "find the apple it's my lunch" (or "its", as recognisers write it): the verb is in the word
         if self.toks[j] in _NO_SUBJECT or not opens_conversation(s, j):
             return False
         k = j + 1
@@ -492,8 +504,10 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     ends after it, after a pause, "but" or "so", perhaps with softening words between ("..., but
     stop right now", "you're late so just stop", "..., actually freeze a moment", "..., but please
     stop moving for now", "..., but hold it right there")."""
-    if i == 0 or s.toks[i - 1] not in (",", "but", "so"):
+    if i == 0:
         return False
+    if s.toks[i - 1] not in (",", "but", "so"):
+        return _stop_ends_talk(s, i)
     k = i
     while k < i + 8:  # "..., but please just stop", "..., actually Stuart stop right there", "... but right now
         if s.at(k) in _BEFORE_A_STOP or s.at(k) in s.vocatives:  # I need you to just freeze where you are"
@@ -509,17 +523,58 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:
-    """Whether a stop verb's clause ends at ``j``, perhaps after saying how long ("..., so stop
-    for a second", "..., but freeze a moment"): then it is a stop, not a word in the talk."""
-    if s.at(j) == "for":
-        j += 1
-    span = s.phrase_at(j, PAUSE_SPANS_BY_FIRST)
-    j += len(span) if span else 0
+    """Whether a stop verb's clause ends at ``j``, perhaps after saying where or how long ("..., so
+    stop for a second", "..., but freeze a moment", "..., just halt right there for a second"):
+    then it is a stop, not a word in the talk."""
+    j = _after_pause_spans(s, j)
     return s.at(j) in CONDITIONS or may_end(s, j)  # "... just stop for a second while I fix your arm"
 
 
+def _after_pause_spans(s: ParseState, j: int) -> int:
+    """``j`` past the words saying where or how long to stay stopped ("right there for a second")."""
+    for _ in range(3):
+        k = j + 1 if s.at(j) == "for" else j
+        span = s.phrase_at(k, PAUSE_SPANS_BY_FIRST)
+        if not span:
+            break
+        j = k + len(span)
+    return j
+
+
+def _stop_ends_talk(s: ParseState, i: int) -> bool:
+    """Whether a stop said at ``i`` with no pause before it is the last thing said in a sentence
+    of talk ("you're going way too far you were only meant to do half a metre halt"): an order
+    tacked on to the talk, never the word inside it ("I told him to stop", "the bus stop", "why
+    did you stop", "don't stop")."""
+    if s.toks[i - 1] in _NO_ORDER_BEFORE:
+        return False
+    end = stop_phrase_end(s, i)
+    if not end:
+        return False
+    j = _after_pause_spans(s, end)
+    while j < s.n and s.toks[j] not in HARD_STOPS and (s.toks[j] in TRAILING or s.toks[j] in s.stop_words):
+        j += 1
+    return j >= s.n or s.toks[j] in HARD_STOPS
+
+
+# words before a stop verb that make it no order to the robot: its subject ("why did you stop",
+# "made it stop"), "to", a negation, a modal or a determiner or adjective of the noun ("the bus stop",
+# "came to a halt", "our last stop")
+_NO_ORDER_BEFORE = frozenset({
+    "to", "not", "dont", "never", "cant", "cannot", "wont", "didnt", "doesnt", "shouldnt", "wouldnt", "couldnt",
+    "i", "you", "we", "they", "he", "she", "it", "me", "us", "them", "him", "ill", "youll", "well", "theyll",
+    "will", "would", "could", "can", "should", "might", "must", "may", "shall", "did", "does", "do", "doing",
+    "the", "a", "an", "this", "that", "my", "your", "our", "their", "his", "her", "its", "no",
+    "bus", "pit", "last", "next", "final", "first", "full", "quick", "one", "every", "each", "deep", "ever", "always",
+    "often", "sometimes", "usually"})
+
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
-_BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then"})
+_BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then", "honestly",
+                            "seriously", "really"})
+
+# words that make a stop urgent: said after "and then", it still calls off the plan, not ends it
+# ("go to station six and find the book and then um stop everything right now")
+_URGENT = frozenset({"everything", "now", "immediately", "instantly", "emergency", "asap"})
 
 # words that open a stop said as a change of mind, even after "and" ("go to the workbench and um
 # actually wait, freeze": the walk is called off)
@@ -534,11 +589,6 @@ SEQUENCERS = frozenset({"then", "and", "afterwards", "afterward", "next", "final
 # corrections that, said alone with nothing to replace what they correct, take it back ("go there, no.")
 RETRACTING = frozenset({("no",), ("no", "wait"), ("wait", "no"), ("scratch", "that"), ("not", "that"),
                         ("my", "mistake"), ("my", "bad")})
-
-# words of time: the robot acts now, so "in twenty minutes" or "later" is never filler
-TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",
-                   "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day", "past", "oclock",
-                   "noon", "midnight", "pm"})
 
 # what a token was to the reader: words a command came from, words of conversation, words of a
 # choice the speaker left open ("..., or maybe right": the robot asks), a tag after a command

@@ -31,8 +31,14 @@ def skip_gesture_tail(s: ParseState, j: int) -> int:
             break  # "wave at the visitors stop": the stop is read, and wins
         if toks[j] == "with" and _one_hand(s, j + 1):
             break  # "wave with your right hand": a gesture plays as it was made, so the robot asks
+        if toks[j] in _WHEN:
+            break  # "wave to the visitors at half past two": a time the robot cannot wait for, so it asks
         j += 1
     return j
+
+
+# words that say when, not how long ("wave for a second" is a short wave)
+_WHEN = frozenset({"past", "oclock", "pm", "noon", "midnight", "tomorrow", "tonight", "later"})
 
 
 def _one_hand(s: ParseState, k: int) -> bool:

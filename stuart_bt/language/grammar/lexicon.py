@@ -210,6 +210,8 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
     ("please", "to"), ("mind",), ("you", "mind"),
+    ("if", "you", "dont", "mind"), ("if", "you", "do", "not", "mind"), ("if", "you", "please"),
+    ("if", "its", "not", "too", "much", "trouble"), ("if", "thats", "ok"), ("if", "thats", "alright"),
 } | {  # a need said ahead: "I'm going to need you to ...", "I'll want you to ..."
     (*subject, *when, verb, "you", "to")
     for subject in (("im",), ("i", "am"), ("were",), ("we", "are"), ("ill",), ("i", "will"), ("well",), ("we", "will"))
@@ -315,7 +317,8 @@ _GESTURE_FORMS: dict[str, tuple[str, ...]] = {
     "wave": ("wave", "high wave", "hand wave", "big wave", "little wave", "friendly wave", "waves", "wave hello",
              "wave goodbye", "goodbye wave", "hello wave", "wave gesture"),
     "face wave": ("face wave",),
-    "clap": ("clap", "claps", "applause", "round of applause", "hand clap", "clapping", "applaud", "big clap"),
+    "clap": ("clap", "claps", "applause", "round of applause", "hand clap", "clapping", "applaud", "big clap",
+             "put your hands together", "put those hands together"),
     "hug": ("hug", "hugs", "big hug", "cuddle", "embrace", "bear hug", "little hug"),
     "heart": ("heart", "heart sign", "heart shape", "love heart", "heart gesture", "two hand heart",
               "heart with your hands", "big heart", "hand heart", "love sign"),
@@ -436,7 +439,7 @@ def _past(verbs: Iterable[str]) -> dict[str, str]:
     out.update({"went": "go", "gone": "go", "found": "find", "got": "get", "gotten": "get", "took": "take",
                 "taken": "take", "brought": "bring", "came": "come", "ran": "run", "held": "hold", "stood": "stand",
                 "gave": "give", "given": "give", "made": "make", "spun": "spin", "shook": "shake", "sought": "seek",
-                "stopped": "stop", "caught": "catch"})
+                "stopped": "stop", "caught": "catch", "shaken": "shake", "done": "do"})
     return out
 
 PAST = _past(ALL_VERBS)
@@ -578,3 +581,11 @@ TIME_OPENERS = frozenset({("back", "when"), ("back", "then"), ("back", "in"), ("
 # which the robot cannot choose, not which thing or place is meant
 BODY_PARTS = frozenset({"hand", "hands", "arm", "arms", "leg", "legs", "foot", "feet", "teeth", "tooth", "head",
                         "eyes", "mouth", "nose", "knee", "knees", "finger", "fingers", "toes", "elbow", "tongue"})
+
+# a subject and "is" as one word, as recognisers write them without the apostrophe ("it's" -> "its")
+SUBJECT_AND_IS = frozenset({"its", "thats", "theres", "hes", "shes", "whats"})
+
+# words of time: the robot acts now, so "in twenty minutes" or "later" is never filler
+TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",
+                   "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day", "past", "oclock",
+                   "noon", "midnight", "pm"})

@@ -122,7 +122,8 @@ def _motion_to(s: ParseState, verb: str, k: int) -> Result:
     if s.at(k2) in ("left", "right", "front", "back", "rear") and (
             k2 + 1 >= n or toks[k2 + 1] not in ("of", "side", "hand", "wall", "door", "room")):
         return read_move(s, k, verb)  # "move to the left"
-    if k < n and toks[k] in ALL_VERBS and toks[k] not in ("back", "face", "stand", "hand", "end", "break"):
+    if k < n and toks[k] in ALL_VERBS and toks[k] not in ("back", "face", "stand", "hand", "end", "break") and not (
+            toks[k] == "like" and s.at(k + 1) in DETERMINERS):  # ("go to like the kitchen": a filler)
         return s.read_clause(s, k)  # "go to find the cup"
     words, e = read_noun_phrase(s, k)
     return read_go(s, read_place(s, words), e)

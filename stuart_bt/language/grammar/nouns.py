@@ -8,6 +8,7 @@ from .lexicon import (
     ADDRESS_TERMS,
     ALL_VERBS,
     BOUNDARY,
+    CORRECTIONS_BY_FIRST,
     DETERMINERS,
     GENERIC,
     HOME,
@@ -18,24 +19,29 @@ from .lexicon import (
     PRONOUNS,
     RETRACTIONS_BY_FIRST,
     STRONG_VERBS,
+    SUBJECT_AND_IS,
     SURFACES,
     TO_WORDS,
     TRAILING,
     VERB_PARTICLES,
     WH,
 )
-from .state import ParseState, Result, starts_a_stop
+from .state import ParseState, Result, starts_a_stop, verb_and_it
 
 
 def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     """A noun phrase from ``i`` to the next connector, preposition or trailing word; leading
     determiners removed ("the red cup" -> ["red", "cup"]). Returns (words, end)."""
     toks, n, stop = s.toks, s.n, s.stop_words
+    if s.at(i) == "like" and s.at(i + 1) in DETERMINERS:
+        i += 1  # "go to like the kitchen": a filler before the phrase
     j = i
     while j < n:
         t = toks[j]
         if t == "like" and j > i and toks[j - 1] in DETERMINERS:
             j += 2 if s.at(j + 1) == "," else 1  # "go to the like reading room": a filler
+            if s.at(j) in DETERMINERS and j - 2 >= i and toks[j - 2] in DETERMINERS:
+                j += 1  # "go to the like the humanoid corner": the phrase said again
             continue
         if t in stop:
             if j == i and t in ("that", "this", "there", "here", "right"):
@@ -52,16 +58,8 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
                 j += 1  # "the right cup", "right kiss" read by other rules first
                 continue
             break
-        if j > i and (t in STRONG_VERBS or _another_phrase_at(toks, i, j) or starts_a_stop(s, j)):
-            break  # ("go to the kitchen hold it": the stop is read, and wins)
-        if j > i and t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
+        if j > i and _something_else_at(s, i, j):
             break
-        if j > i and t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
-            break  # "go to the kitchen just kidding": what follows takes the request back
-        if t == "back" and j > i and toks[j - 1] not in DETERMINERS and (
-                j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
-                or toks[j + 1] in ("here", "there", "over")):
-            break  # "bring the book back to the entrance", "put it back"
         j += 1
     words = toks[i:j]
     while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS or words[0] in ("like", ",")):
@@ -69,6 +67,25 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     if len(words) > 1 and words[-1] in ADDRESS_TERMS and (j >= n or toks[j] in BOUNDARY):
         words = words[:-1]  # "go find the apple buddy": the one spoken to, not part of the thing
     return words, j
+
+
+def _something_else_at(s: ParseState, i: int, j: int) -> bool:
+    """Whether the noun phrase begun at ``i`` ends before ``j`` because something else starts
+    there: a verb, another phrase, a stop, a statement, a retraction or a correction."""
+    toks, n, t = s.toks, s.n, s.toks[j]
+    if t in STRONG_VERBS or _another_phrase_at(toks, i, j) or starts_a_stop(s, j) or verb_and_it(s, j):
+        return True  # ("go to the kitchen hold it": the stop is read, and wins)
+    if t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
+        return True
+    if t in SUBJECT_AND_IS and s.at(j + 1) not in BOUNDARY:
+        return True  # "find the apple its my lunch": a statement follows
+    if t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
+        return True  # "go to the kitchen just kidding": what follows takes the request back
+    if t in CORRECTIONS_BY_FIRST and len(s.phrase_at(j, CORRECTIONS_BY_FIRST) or ()) > 1:
+        return True  # "go to the bathroom scratch that", "the kitchen I mean the bathroom": a correction
+    return t == "back" and toks[j - 1] not in DETERMINERS and (
+        j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
+        or toks[j + 1] in ("here", "there", "over"))  # "bring the book back to the entrance", "put it back"
 
 
 # determiners and subject pronouns, which after a noun open another noun phrase or a clause ("the

@@ -121,6 +121,13 @@ def starts_a_stop(s: ParseState, j: int) -> bool:
     return stop_phrase_end(s, j) > 0
 
 
+def verb_and_it(s: ParseState, j: int) -> bool:
+    """Whether a verb and "it" or "them" start a new command at ``j`` ("... take it to the reading
+    room", "... bring them here"): a verb with a pronoun for its object is never part of a name."""
+    return (s.toks[j] in ALL_VERBS and s.at(j + 1) in ("it", "them") and j > 0
+            and s.toks[j - 1] not in DETERMINERS and s.toks[j - 1] != "to")
+
+
 def skip_rest(s: ParseState, j: int) -> int:
     """After a clause: skip words the grammar does not use ("at the door", "quickly") up to the
     next connector, a purpose "to <verb>", or a new verb that starts a command."""
@@ -143,6 +150,8 @@ def skip_rest(s: ParseState, j: int) -> int:
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" or starts_a_stop(s, j):
                 break
+            if verb_and_it(s, j):
+                break  # "pick up the book take it to the reading room": the next command, no pause written
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
                 break  # "... the corner do a high five", "... give everyone a wave": the next command
             if t in SIGN_OFFS_BY_FIRST and (off := s.phrase_at(j, SIGN_OFFS_BY_FIRST)) and may_end(s, j + len(off)):

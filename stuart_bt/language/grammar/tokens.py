@@ -72,6 +72,9 @@ _SEPARATE = str.maketrans({
     "’": "'", "‘": "'",
 })
 
+# a title's full stop, before the name ("shake hands with Dr. Okafor")
+_TITLE_DOT = re.compile(r"\b(dr|mr|mrs|ms|prof|st|mt|capt)\.(?= +[^\W\d_])")
+
 _DECIMAL = re.compile(r"\d[.,]\d")
 
 _NUMBER_PIECE = re.compile(r"\d+(?:[.,]\d+)?[^\W_]*|[^\W\d_][^\W_]*(?:'[^\W_]+)*|[.;!?,°&]")
@@ -88,6 +91,8 @@ def tokenize(text: str) -> Tokens:
         low = "".join(c.lower() if len(c.lower()) == 1 else c for c in text)
     if "-" in low or "–" in low or "—" in low:
         low = _BREAK_BEFORE_A_STOP.sub(";", low)
+    if "." in low:
+        low = _TITLE_DOT.sub(r"\1 ", low)  # "Dr. Okafor": no sentence ends after a title
     if _DECIMAL.search(low):  # "1.5": the period is no separator here (rare: the slow way)
         pieces = _NUMBER_PIECE.findall(low.replace("’", "'").translate(_KEEP_POINTS))
     else:
