@@ -68,3 +68,24 @@ def test_the_robot_named_after_thanks_with_no_pause_gets_what_follows(parser):
                                   "thanks stuart that was great", "ok so stuart is going to the kitchen now"])
 def test_the_robot_named_inside_talk_with_no_pause_is_spoken_about(parser, text):
     assert did(parser, text) == []
+
+
+@pytest.mark.parametrize("text,want", [
+    ("Sorry to bother you, Stuart. Could you give us a wave?", [("gesture", "wave")]),
+    ("It's photo time. Please, Stuart, put your hands up.", [("gesture", "hands up")]),
+    ("Once you've found the cup, Stuart, pick it up.", [("find", "cup"), ("pick_up", "cup")]),
+    ("Would you mind going to the entrance, Stuart? The delivery guy is there.", [("navigate_to_marker", "entrance")]),
+    ("these are the students from the summer school stuart wave", [("gesture", "wave")]),
+    ("the kids want a story stuart when you get to the reading room find the book",
+     [("navigate_to_marker", "reading room"), ("find", "book")]),
+])
+def test_the_robot_named_inside_the_utterance_gets_what_is_said_to_it(parser, text, want):
+    assert did(parser, text) == want
+
+
+@pytest.mark.parametrize("text", ["I saw stuart go to the kitchen", "I think stuart should go to the kitchen",
+                                  "yesterday stuart went to the kitchen", "Stuart's battery is low so go to the dock",
+                                  "I was talking to Stuart, the robot, about the kitchen",
+                                  "haha stuart you walk to the kitchen slower than my grandad"])
+def test_the_robot_named_inside_talk_about_it_is_not_woken(parser, text):
+    assert did(parser, text) == []

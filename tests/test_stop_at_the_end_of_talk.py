@@ -57,3 +57,12 @@ def test_an_urgent_stop_after_and_then_calls_the_plan_off() -> None:
 
 def test_a_plain_stop_after_and_then_stays_the_last_step() -> None:
     assert actions("Hey Stuart, go to the kitchen and then stop") == ["navigate_to_marker", "stop"]
+
+
+@pytest.mark.parametrize("text", [
+    "stuart i was going to ask you to find the apple but first stop because your arm is making a weird noise",
+    "stuart the kids are right behind you so please stop moving and stay where you are",
+    "ok stuart move forward two metres and then turn around and then halt okay",
+])
+def test_a_stop_after_a_lead_in_or_a_word_of_alarm_after_a_plan_wins(text: str) -> None:
+    assert actions(text) == ["stop"]

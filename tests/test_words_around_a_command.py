@@ -34,6 +34,10 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart um hands up everybody's watching", [("gesture", "hands up")]),
     ("stuart after you pick up the book take it to the reading room",
      [("pick_up", "book"), ("navigate_to_marker", "reading room")]),
+    ("stuart go to the charging dock your battery's low", [("navigate_to_marker", "charging dock")]),
+    ("stuart grab the bottle mate cheers", [("pick_up", "bottle")]),
+    ("Stuart, would you please take our visitors to the 3D printers?", [("navigate_to_marker", "3d printers")]),
+    ("stuart go to the parking lot", [("navigate_to_marker", "parking lot")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)
@@ -43,3 +47,8 @@ def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
 @pytest.mark.parametrize("text", ["stuart go to the bathroom scratch that", "Stuart, turn left, my bad"])
 def test_a_correction_with_nothing_after_it_takes_the_command_back(text):
     assert Parser().parse(text).intents == []
+
+
+def test_a_joke_taken_back_after_words_the_grammar_cannot_read_takes_everything_back():
+    said = "stuart why don't you just walk to the kitchen and make us all a cup of tea haha i'm only joking"
+    assert Parser().parse(said).intents == []

@@ -34,7 +34,7 @@ from .asides import said_to_the_robot, turned_to_the_robot
 from .doubt import Doubt, Limits, doubts
 from .grammar import Coverage, Defaults, Grammar, coverage
 from .grammar.driver import TALK, Reading
-from .grammar.lexicon import AUX, MODALS, WH
+from .grammar.lexicon import AUX, MODALS, SUBJECTS, WH
 from .intents import STOP, TaskIntent
 from .wake import GREETINGS, WakeFilter, WakeMatch
 
@@ -124,7 +124,7 @@ class Parser:
         if not wake.woke:
             turned = turned_to_the_robot(utterance, self._is_name) if "," in utterance else None
             if turned is None:
-                turned = self._named_after_a_hand_over(utterance)
+                turned = self._named_inside(utterance)
             if turned is not None:  # "Sam, grab the extinguisher - Stuart, stop where you are"
                 return self._command(utterance, True, turned)
             if not self.require_wake:
@@ -135,18 +135,36 @@ class Parser:
             command = said_to_the_robot(command, self._is_name)
         return self._command(utterance, True, command)
 
-    def _named_after_a_hand_over(self, utterance: str) -> str | None:
-        """What follows the name said inside the utterance with no pause around it, right after a
-        word that closes talk with someone else ("stella can you get the lights thanks stuart go
-        to the robot arms", as recognisers write it), when it is said to the robot; else None."""
+    def _named_inside(self, utterance: str) -> str | None:
+        """The text said to the robot when its name is said inside the utterance, neither first
+        nor last, and nobody else is addressed: set off by pauses it is a vocative, and the whole
+        utterance without it is said to the robot ("Once you've found the cup, Stuart, pick it
+        up.", "Sorry to bother you, Stuart. Could you give us a wave?"); with no pause, what
+        follows it is, when that is said to the robot and the word before the name does not speak
+        of it ("the kids want a story stuart when you get to the reading room find the book", but
+        "me and stuart go to the kitchen every day", "I saw stuart go to the kitchen"). Else None."""
         words = list(_WORDS.finditer(utterance))
-        initial = self.wake_filter.name[:1].lower()
+        name = self.wake_filter.name.lower()
         for k in range(1, len(words) - 1):
-            word = words[k].group().lower()  # (spelled with the name's first letter: cheap to rule out)
-            if word[:1] == initial and words[k - 1].group().lower() in _HAND_OVER and self._is_name(word):
-                rest = utterance[words[k].end():].strip(" ,")
-                return rest if self._said_to_the_robot(rest) else None
+            word = words[k].group().lower()  # (spelled as the name starts, about as long: cheap to rule out)
+            if word[:2] != name[:2] or abs(len(word) - len(name)) > 2 or "'" in word or not self._is_name(word):
+                continue  # ("Stuart's battery is low": spoken of)
+            before = utterance[words[k - 1].end():words[k].start()]
+            after = utterance[words[k].end():words[k + 1].start()]
+            if _PAUSE.search(before) and _PAUSE.search(after):
+                said = _without(utterance, words[k].start(), words[k].end())
+                return said if self._said_to_the_robot_somewhere(said) else None
+            if (k < 2 or words[k - 1].group().lower() in _SPOKEN_OF or words[k + 1].group().lower() in _SUBJECT_VERBS
+                    or _PAUSE.search(after)):
+                return None  # (the name second: the wake filter's, "haha stuart you walk like a penguin")
+            rest = utterance[words[k + 1].start():]
+            return rest if self._said_to_the_robot(rest) else None
         return None
+
+    def _said_to_the_robot_somewhere(self, text: str) -> bool:
+        """Whether any sentence of ``text`` holds a command (the rest may be talk)."""
+        reading = self.grammar.read(text)
+        return bool(reading.intents)
 
     def _is_name(self, word: str) -> bool:
         """Whether a word (lower case) is the robot's name as the wake filter hears names."""
@@ -172,9 +190,32 @@ _END = " \t\r\n.!?,;:"  # what a sentence may end with after its last word
 _ABOUT_IT = frozenset({"to", "at", "with", "about", "for", "from", "like", "of", "and", "or", "by", "than", "tell",
                        "ask", "meet", "is", "was", "the", "a"})
 
-# words that close talk with someone else, after which the robot's name turns to it
-_HAND_OVER = frozenset({"thanks", "cheers", "ok", "okay", "alright", "right", "now", "so"})
+def _without(text: str, start: int, end: int) -> str:
+    """``text`` without the vocative at ``start:end`` and the comma that set it off: "Please,
+    Stuart, put your hands up." -> "Please, put your hands up."; "..., Stuart. Could you ..." ->
+    "... . Could you ..."."""
+    left, right = text[:start].rstrip(), text[end:].lstrip()
+    if right.startswith(","):
+        right = right[1:].lstrip()
+    elif right[:1] in (".", "!", "?", ";", ":") and left.endswith(","):
+        left = left[:-1]
+    return f"{left} {right}"
+
+
+# words before the name inside an utterance, with no pause, that speak of the robot ("me and
+# stuart go ...", "I saw stuart go ...", "when stuart goes ..."), and words after it that make it
+# the subject of a sentence ("stuart should go ...", "stuart is ...")
+_SPOKEN_OF = _ABOUT_IT | frozenset({
+    "told", "tells", "asked", "asks", "let", "lets", "make", "makes", "made", "saw", "see", "sees", "seen", "watch",
+    "watched", "help", "helped", "have", "had", "get", "got", "want", "wants", "wanted", "need", "needs", "did",
+    "does", "do", "can", "could", "will", "would", "should", "when", "if", "while", "because", "that", "whether",
+    "why", "how", "where", "what", "who", "until", "before", "after", "once", "but", "bet", "think", "thought",
+    "said", "says", "hope", "hear", "heard", "love", "loves", "like", "likes", "not", "on", "in", "into"})
+_SUBJECT_VERBS = AUX | MODALS | SUBJECTS | frozenset({
+    "has", "had", "goes", "went", "walks", "walked", "turns", "turned", "picks", "picked", "finds", "found", "waves",
+    "waved", "and", "or"})
 _WORDS = re.compile(r"[A-Za-z']+")
+_PAUSE = re.compile(r"[,.!?;:\u2013\u2014-]")
 
 _DEFAULT: Parser | None = None
 

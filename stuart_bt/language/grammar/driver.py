@@ -48,6 +48,7 @@ from .lexicon import (
     CONDITIONS,
     COPULA,
     CORRECTIONS_BY_FIRST,
+    DETERMINERS,
     DIRECTIONS,
     HARD_STOPS,
     LIST_LABELS,
@@ -57,6 +58,7 @@ from .lexicon import (
     PAUSE_SPANS_BY_FIRST,
     PLAIN_STOPS,
     POLITE_BY_FIRST,
+    REPEATS_BY_FIRST,
     RETRACTIONS_BY_FIRST,
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
@@ -182,9 +184,7 @@ class _CommandReader:
             self._mark(self.i, self.i + 1, USED)  # "..., actually Stuart stop right there": the name again
             self.i += 1
             return True
-        if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self._corrects_after(self.i + 1):
-            self._mark(self.i, self.i + 1, USED)  # "actually, scratch that": the word before a correction
-            self.i += 1
+        if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self._before_a_correction():
             return True
         if t == "no" and s.at(self.i + 1) in STOP_PHRASES_BY_FIRST and (
                 s.phrase_at(self.i + 1, STOP_PHRASES_BY_FIRST) is not None):
@@ -237,6 +237,45 @@ class _CommandReader:
         while s.at(i) == "," or s.at(i) in INTERJECTIONS:
             i += 1
         return i < s.n and bool(retraction_at(s, i) or s.phrase_at(i, CORRECTIONS_BY_FIRST))
+
+    def _before_a_correction(self) -> bool:
+        """An interjection at ``i`` before a correction ("actually, scratch that") or before the
+        thing or place said instead ("go to the kitchen? oh, actually, the bathroom", "wait, not
+        the bottle, the cup"): consumed, and the last clause marked to be replaced."""
+        if self._corrects_after(self.i + 1):
+            self._mark(self.i, self.i + 1, USED)
+            self.i += 1
+            return True
+        instead = self._said_instead(self.i)
+        if not instead:
+            return False
+        self.correct_at = len(self.out) - _last_clause_len(self.out)
+        self._mark(self.i, instead, USED)
+        self.i = instead
+        return True
+
+    def _said_instead(self, i: int) -> int:
+        """Where a thing or place said instead of the last one starts, after interjections at ``i``
+        and perhaps "not" and the one meant not ("oh, actually, the bathroom", "wait, not the
+        bottle, the cup"): a phrase with no verb to the end of its sentence; 0 when none is."""
+        s = self.s
+        while s.at(i) == "," or s.at(i) in INTERJECTIONS:
+            i += 1
+        if s.at(i) == "not":
+            k = i + 1
+            while k < s.n and s.toks[k] not in BOUNDARY:
+                k += 1
+            if s.at(k) != ",":
+                return 0
+            i = k + 1
+        if s.at(i) not in DETERMINERS:
+            return 0
+        k = i + 1
+        while k < s.n and s.toks[k] not in HARD_STOPS:
+            if s.toks[k] in ALL_VERBS or s.toks[k] in BOUNDARY:
+                return 0
+            k += 1
+        return i if k > i + 1 else 0
 
     def _forget_all(self) -> None:
         self.s.last_action = ""  # nothing for an ellipsis to continue ("..., I'm joking, obviously")
@@ -309,6 +348,8 @@ class _CommandReader:
             self.dead = True  # "walking to the kitchen takes ages": the ing-form is the subject of a statement
             self._no_clause(t, False)
             self._mark(start, self.i, TALK)
+            return
+        if not subordinate and t in REPEATS_BY_FIRST and self._repeated(start):
             return
         got = read_arrival(s, start) if subordinate else None
         if got is None:
@@ -386,6 +427,25 @@ class _CommandReader:
         if specs[-1][1] and s.at(j) in QUALIFIERS and _says_which(self.toks[j:self.i]):
             self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step
 
+    def _repeated(self, start: int) -> bool:
+        """ "..., and again", "one more time", "do it again", "do the same to the left": the step
+        just asked for once more (a move or turn to the side said, or the other way), placed as a
+        clause of its own; False when no repeat is said at ``start`` or there is nothing to repeat."""
+        s = self.s
+        said = s.phrase_at(start, REPEATS_BY_FIRST)
+        done = self.held or self.out
+        if said is None or not done:
+            return False
+        j = start + len(said)
+        again, j = _mirrored(s, j, done[-1])
+        if again is None or not may_end(s, j):
+            return False
+        self._mark(start, j, USED)
+        self._place([again])
+        s.first = False
+        self.i = self.clause_end = skip_rest(s, j)
+        return True
+
     def _restated(self, start: int, end: int, specs: list[Spec]) -> TaskIntent | None:
         """ "turn left, ninety degrees", "forward, a couple of metres": an amount alone after a
         pause says how far the move or turn just asked for goes, when that one said no amount.
@@ -409,8 +469,9 @@ class _CommandReader:
         statement of their own: they open as one (a subject: "the kids", "we", "Jess is") and
         have a verb before the next connector ("the kids want ...", "we are late")."""
         s = self.s
-        if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS) and s.at(j + 1) not in BOUNDARY:
-            return True  # "find the apple it's my lunch" (or "its", as recognisers write it): the verb is in the word
+        if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS) and s.at(j + 1) not in BOUNDARY or (
+                self.toks[j] in DETERMINERS and j + 1 in self.tokens.contracted):
+            return True  # "find the apple it's my lunch" ("its", as recognisers write it), "your battery's low"
         if self.toks[j] in _NO_SUBJECT or not opens_conversation(s, j):
             return False
         k = j + 1
@@ -451,7 +512,7 @@ class _CommandReader:
             self.dead = True
         self.i += 1
         while self.i < s.n and toks[self.i] not in BOUNDARY and not (
-                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i)):
+                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i) or _retracted_at(s, self.i)):
             self.i += 1  # "you're late so just stop": the talk ends where a stop is said; "do a dance stop" too
         if self.dead:
             self._mark(start, self.i, TALK)
@@ -506,7 +567,10 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     stop moving for now", "..., but hold it right there")."""
     if i == 0:
         return False
-    if s.toks[i - 1] not in (",", "but", "so"):
+    b = i - 1
+    while b > 0 and s.toks[b] in _BEFORE_A_STOP and s.toks[b] != "so":
+        b -= 1  # ("..., but first stop because ...": the words between were read as a new clause's)
+    if s.toks[b] not in (",", "but", "so"):
         return _stop_ends_talk(s, i)
     k = i
     while k < i + 8:  # "..., but please just stop", "..., actually Stuart stop right there", "... but right now
@@ -527,7 +591,8 @@ def _stop_ends(s: ParseState, j: int) -> bool:
     stop for a second", "..., but freeze a moment", "..., just halt right there for a second"):
     then it is a stop, not a word in the talk."""
     j = _after_pause_spans(s, j)
-    return s.at(j) in CONDITIONS or may_end(s, j)  # "... just stop for a second while I fix your arm"
+    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or may_end(s, j)  # "... just stop for a second while I fix
+    # your arm", "... but first stop because your arm is making a weird noise"
 
 
 def _after_pause_spans(s: ParseState, j: int) -> int:
@@ -570,11 +635,12 @@ _NO_ORDER_BEFORE = frozenset({
 
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
 _BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then", "honestly",
-                            "seriously", "really"})
+                            "seriously", "really", "first"})
 
-# words that make a stop urgent: said after "and then", it still calls off the plan, not ends it
-# ("go to station six and find the book and then um stop everything right now")
-_URGENT = frozenset({"everything", "now", "immediately", "instantly", "emergency", "asap"})
+# words that make a stop urgent, and the stop words of alarm: said after "and then", it still
+# calls off the plan, not ends it ("go to station six and find the book and then um stop
+# everything right now", "... and then halt"; "... and then stop" is the plan's last step)
+_URGENT = frozenset({"everything", "now", "immediately", "instantly", "emergency", "asap", "halt", "freeze"})
 
 # words that open a stop said as a change of mind, even after "and" ("go to the workbench and um
 # actually wait, freeze": the walk is called off)
@@ -595,6 +661,30 @@ RETRACTING = frozenset({("no",), ("no", "wait"), ("wait", "no"), ("scratch", "th
 # ("go to the kitchen, right?": a question about it, or a check that it was heard? the robot asks)
 USED, TALK, CHOICE, ASKED = 1, 2, 3, 4  # ASKED: a tag that puts a command as a question ("..., right?")
 _RUNS = {how: bytes((how,)) * 256 for how in (USED, TALK, CHOICE)}  # MAX_TOKENS marks of each, sliced
+
+
+def _retracted_at(s: ParseState, i: int) -> bool:
+    """Whether a retraction is said at ``i`` ("... make us all a cup of tea haha i'm only joking")."""
+    return s.toks[i] in RETRACTIONS_BY_FIRST and bool(retraction_at(s, i))
+
+
+def _mirrored(s: ParseState, j: int, last: TaskIntent) -> tuple[TaskIntent | None, int]:
+    """``last`` again, to the side said at ``j`` ("... to the left", "the other way") for a move
+    sideways or a turn, and where those words end; (None, j) when a side is said for a step that
+    has none."""
+    k = j + 1 if s.at(j) in ("to", "on") else j
+    k += 1 if s.at(k) == "the" else 0
+    if s.at(k) in ("left", "right"):
+        sign, end = (1.0 if s.at(k) == "left" else -1.0), k + 1
+    elif s.at(k) == "other" and s.at(k + 1) in ("way", "side", "direction"):
+        sign, end = 0.0, k + 2
+    else:
+        return replace(last), j
+    if last.action == TURN:
+        return replace(last, yaw=-last.yaw if sign == 0.0 else math.copysign(last.yaw, sign)), end
+    if last.action == MOVE and last.y and not last.x:
+        return replace(last, y=-last.y if sign == 0.0 else math.copysign(last.y, sign)), end
+    return None, j
 
 
 def _condition_at(toks: list[str], start: int, end: int) -> int:

@@ -211,6 +211,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
     ("please", "to"), ("mind",), ("you", "mind"),
     ("if", "you", "dont", "mind"), ("if", "you", "do", "not", "mind"), ("if", "you", "please"),
+    ("sorry", "to", "bother", "you"), ("sorry", "to", "interrupt"), ("sorry", "to", "disturb", "you"),
     ("if", "its", "not", "too", "much", "trouble"), ("if", "thats", "ok"), ("if", "thats", "alright"),
 } | {  # a need said ahead: "I'm going to need you to ...", "I'll want you to ..."
     (*subject, *when, verb, "you", "to")
@@ -589,3 +590,16 @@ SUBJECT_AND_IS = frozenset({"its", "thats", "theres", "hes", "shes", "whats"})
 TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",
                    "tomorrow", "tonight", "today", "morning", "afternoon", "evening", "week", "day", "past", "oclock",
                    "noon", "midnight", "pm"})
+
+# a step asked for once more, said as a clause of its own ("turn left, and again", "... and then
+# do it again", "do the same to the left"); "turn left again" is one turn ("again" only trails it)
+REPEATS: tuple[tuple[str, ...], ...] = (
+    ("again",), ("one", "more", "time"), ("once", "more"), ("same", "again"), ("repeat", "that"), ("repeat", "it"),
+    *((verb, what, "again") for verb in ("do", "try") for what in ("it", "that", "this")),
+    ("do", "the", "same"), ("the", "same"), ("same", "thing"), ("do", "the", "same", "thing"),
+)
+REPEATS_BY_FIRST = by_first(sorted(REPEATS, key=lambda r: (-len(r), r)))
+
+# words before a thing or place said instead of the last one, with no pause ("pick up the apple
+# hmm actually the book"): a noun phrase ends before them
+INSTEAD = frozenset({"actually", "oh", "ah", "hmm"})

@@ -62,11 +62,21 @@ def read_do(s: ParseState, i: int) -> Result:
     return None
 
 
+# people the robot may take somewhere ("take the kids to the drone cage")
+_PEOPLE = frozenset({"visitors", "visitor", "guests", "guest", "kids", "children", "students", "group", "people",
+                     "family", "class", "team", "delegation", "parents", "folks", "lady", "ladies", "gentleman",
+                     "gentlemen", "man", "woman", "boy", "girl", "professor", "investors", "guys"})
+
+
 def _led_somewhere(s: ParseState, verb: str, i: int) -> Found | None:
     """ "take me to the kitchen", "take yourself over to the lab", "show me to the bathroom",
     "show us the way to ...", "show me where the kitchen is": a walk there."""
     j = i + 1
-    if verb == "take" and s.at(j) in ("me", "us", "him", "her", "them", "yourself"):
+    if verb == "take" and s.at(j) in ("our", "the", "these", "those", "my", "your", "this", "that") and s.at(
+            j + 1) in _PEOPLE:
+        j += 1  # "take our visitors to the 3D printers": people are guided, not picked up
+    if verb == "take" and (s.at(j) in ("me", "us", "him", "her", "them", "yourself", "everyone", "everybody")
+                           or s.at(j) in _PEOPLE):
         k = j + 2 if s.at(j + 1) in ("over", "off", "down", "up", "back", "across") else j + 1
         if s.at(k) in TO_WORDS:  # "take me to the kitchen", "take yourself over to the reading room"
             words, e = read_noun_phrase(s, k + 1)

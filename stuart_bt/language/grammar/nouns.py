@@ -12,6 +12,7 @@ from .lexicon import (
     DETERMINERS,
     GENERIC,
     HOME,
+    INSTEAD,
     NP_BLOCK,
     NP_LEADERS,
     NP_STOP,
@@ -64,8 +65,9 @@ def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
     words = toks[i:j]
     while len(words) > 1 and (words[0] in DETERMINERS or words[0] in NP_LEADERS or words[0] in ("like", ",")):
         words = words[1:]  # ("the, like, reading room": a filler after the determiner)
-    if len(words) > 1 and words[-1] in ADDRESS_TERMS and (j >= n or toks[j] in BOUNDARY):
-        words = words[:-1]  # "go find the apple buddy": the one spoken to, not part of the thing
+    if j >= n or toks[j] in BOUNDARY:
+        while len(words) > 1 and (words[-1] in ADDRESS_TERMS or words[-1] in _THANKS_WORDS):
+            words = words[:-1]  # "go find the apple buddy", "grab the bottle mate cheers": no part of the thing
     return words, j
 
 
@@ -77,8 +79,10 @@ def _something_else_at(s: ParseState, i: int, j: int) -> bool:
         return True  # ("go to the kitchen hold it": the stop is read, and wins)
     if t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
         return True
-    if t in SUBJECT_AND_IS and s.at(j + 1) not in BOUNDARY:
-        return True  # "find the apple its my lunch": a statement follows
+    if t in INSTEAD and s.at(j + 1) in DETERMINERS:
+        return True  # "pick up the apple hmm actually the book": something said instead
+    if t in SUBJECT_AND_IS and s.at(j + 1) not in BOUNDARY or t in DETERMINERS and j + 1 in s.contracted:
+        return True  # "find the apple its my lunch", "go to the dock your battery's low": a statement follows
     if t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:
         return True  # "go to the kitchen just kidding": what follows takes the request back
     if t in CORRECTIONS_BY_FIRST and len(s.phrase_at(j, CORRECTIONS_BY_FIRST) or ()) > 1:
@@ -87,6 +91,9 @@ def _something_else_at(s: ParseState, i: int, j: int) -> bool:
         j + 1 >= n or toks[j + 1] in TO_WORDS or toks[j + 1] in BOUNDARY or toks[j + 1] in HOME
         or toks[j + 1] in ("here", "there", "over"))  # "bring the book back to the entrance", "put it back"
 
+
+# thanks said after a command's thing ("grab the bottle mate cheers"), never part of it
+_THANKS_WORDS = frozenset({"thanks", "thank", "cheers", "ta", "thx", "ty"})
 
 # determiners and subject pronouns, which after a noun open another noun phrase or a clause ("the
 # cup the kids want", "the man a bottle", "the kitchen we are late"); a determiner not after "of"

@@ -13,6 +13,7 @@ from .lexicon import (
     CONDITIONS,
     CORRECTIONS_BY_FIRST,
     DETERMINERS,
+    INSTEAD,
     PLAIN_STOPS,
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
@@ -150,8 +151,8 @@ def skip_rest(s: ParseState, j: int) -> int:
                 break
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" or starts_a_stop(s, j):
                 break
-            if verb_and_it(s, j):
-                break  # "pick up the book take it to the reading room": the next command, no pause written
+            if verb_and_it(s, j) or t in INSTEAD and s.at(j + 1) in DETERMINERS:
+                break  # "pick up the book take it to ...": the next command; "... actually the book": a correction
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
                 break  # "... the corner do a high five", "... give everyone a wave": the next command
             if t in SIGN_OFFS_BY_FIRST and (off := s.phrase_at(j, SIGN_OFFS_BY_FIRST)) and may_end(s, j + len(off)):

@@ -22,7 +22,7 @@ def read_stop(s: ParseState, i: int) -> Result:
     verb = toks[i]
     j = i + 1
     nxt = s.at(j)
-    if verb == "stop" and i > 0 and toks[i - 1] in _ORDINALS and nxt not in BOUNDARY:
+    if verb == "stop" and i > 0 and toks[i - 1] in _ORDINALS and nxt not in BOUNDARY and nxt not in _NO_PLACE_NEXT:
         return _next_stop(s, j)  # "next stop: the electronics bench": where to, not a stop
     needs = STOP_VERB_NEEDS.get(verb)
     if needs is not None and nxt not in needs:
@@ -46,6 +46,9 @@ def read_stop(s: ParseState, i: int) -> Result:
 
 # words before "stop" that make it a place on a route ("next stop, the kitchen")
 _ORDINALS = frozenset({"next", "first", "last", "final", "second", "third"})
+# words after "first stop" that say it is the verb ("..., but first stop because your arm is noisy")
+_NO_PLACE_NEXT = frozenset({"because", "cause", "cos", "while", "until", "till", "please", "now", "right", "for",
+                            "moving", "everything"})
 
 
 def _next_stop(s: ParseState, j: int) -> Result:
