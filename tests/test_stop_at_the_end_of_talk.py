@@ -63,6 +63,10 @@ def test_a_plain_stop_after_and_then_stays_the_last_step() -> None:
     "stuart i was going to ask you to find the apple but first stop because your arm is making a weird noise",
     "stuart the kids are right behind you so please stop moving and stay where you are",
     "ok stuart move forward two metres and then turn around and then halt okay",
+    "okay stuart so we're going to head over to the drone cage next and then maybe the reading room no stop stop "
+    "there's a kid right in front of you",
+    "Stuart, everyone's following you to the 3D printers, which is great, but stop for a second so the group can "
+    "catch up.",
 ])
 def test_a_stop_after_a_lead_in_or_a_word_of_alarm_after_a_plan_wins(text: str) -> None:
     assert actions(text) == ["stop"]

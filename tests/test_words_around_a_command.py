@@ -38,6 +38,8 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart grab the bottle mate cheers", [("pick_up", "bottle")]),
     ("Stuart, would you please take our visitors to the 3D printers?", [("navigate_to_marker", "3d printers")]),
     ("stuart go to the parking lot", [("navigate_to_marker", "parking lot")]),
+    ("Stuart, wave, kids love that.", [("gesture", "wave")]),
+    ("Stuart, give it a quarter turn to the left.", [("turn_by_angle", "")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)
@@ -52,3 +54,9 @@ def test_a_correction_with_nothing_after_it_takes_the_command_back(text):
 def test_a_joke_taken_back_after_words_the_grammar_cannot_read_takes_everything_back():
     said = "stuart why don't you just walk to the kitchen and make us all a cup of tea haha i'm only joking"
     assert Parser().parse(said).intents == []
+
+
+def test_write_where_only_a_side_can_be_meant_is_right():
+    [step] = Parser().parse("stuart slide to the write a little").intents
+    assert (step.action, step.y) == ("move_relative", -0.5)
+    assert Parser().parse("stuart write it down").intents == []

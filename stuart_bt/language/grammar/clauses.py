@@ -233,8 +233,9 @@ def names_a_doer(s: ParseState, i: int) -> bool:
     """Whether the words at ``i`` are someone named and what they do ("Sam needs you there", "Dr
     Patel wants the cup"): a statement about a third person, however the person is called."""
     k = i + 1 if s.toks[i] in _TITLES else i
-    return (s.at(k + 1) in _THIRD_PERSON and s.toks[i] not in ALL_VERBS and s.toks[i] not in BOUNDARY
-            and s.toks[k] not in DETERMINERS)
+    verb = s.at(k + 1)
+    return ((verb in _THIRD_PERSON or verb in _PLURAL_LIKING and s.toks[k].endswith("s")) and s.toks[i] not in ALL_VERBS
+            and s.toks[i] not in BOUNDARY and s.toks[k] not in DETERMINERS)  # ("..., kids love that")
 
 
 def _asks_a_wish(s: ParseState, i: int) -> bool:
@@ -261,6 +262,10 @@ _TITLES = frozenset({"dr", "doctor", "mr", "mrs", "ms", "miss", "professor", "pr
 # a third person's verbs that open a statement about them ("Sam needs you there", "mum loves it")
 _THIRD_PERSON = _REPORTED | frozenset({"needs", "likes", "loves", "hates", "knows", "has", "wishes", "prefers",
                                        "expects", "sends", "says", "waits", "is", "was"})
+
+# what a group feels or thinks, said of them ("wave, kids love that")
+_PLURAL_LIKING = frozenset({"love", "like", "want", "need", "think", "know", "say", "hate", "enjoy", "prefer",
+                            "adore"})
 
 # personal pronouns: after a verb they open a new sentence rather than make the verb a noun
 _PERSONAL = frozenset({"you", "we", "i", "they", "he", "she", "it", "everyone", "everybody"})

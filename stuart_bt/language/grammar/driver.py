@@ -567,6 +567,9 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     stop moving for now", "..., but hold it right there")."""
     if i == 0:
         return False
+    if s.toks[i] in PLAIN_STOPS and (s.toks[i - 1] == "no" or s.at(i + 1) == s.toks[i]) or (
+            s.toks[i] == "no" and s.at(i + 1) in PLAIN_STOPS):
+        return True  # "... and then maybe the reading room no stop stop there's a kid in front of you"
     b = i - 1
     while b > 0 and s.toks[b] in _BEFORE_A_STOP and s.toks[b] != "so":
         b -= 1  # ("..., but first stop because ...": the words between were read as a new clause's)
@@ -591,8 +594,8 @@ def _stop_ends(s: ParseState, j: int) -> bool:
     stop for a second", "..., but freeze a moment", "..., just halt right there for a second"):
     then it is a stop, not a word in the talk."""
     j = _after_pause_spans(s, j)
-    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or may_end(s, j)  # "... just stop for a second while I fix
-    # your arm", "... but first stop because your arm is making a weird noise"
+    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or s.at(j) == "so" or may_end(s, j)  # "... just stop for
+    # a second while I fix your arm", "... but first stop because ...", "... stop for a second so the group can ..."
 
 
 def _after_pause_spans(s: ParseState, j: int) -> int:

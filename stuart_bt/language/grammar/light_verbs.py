@@ -101,11 +101,13 @@ def _walk_to(s: ParseState, words: list[str], end: int) -> Result:
 
 
 def _past_audience(s: ParseState, j: int) -> int:
-    """Past whom it is done for: "show me", "do the guests a ...", "give everyone a wave"."""
+    """Past whom (or what) it is done for: "show me", "do the guests a ...", "give everyone a
+    wave", "give it a quarter turn to the left" (the robot's own turn: "it" is any thing)."""
     if s.at(j) in ("the", "our") and s.at(j + 1) in ("guests", "visitors", "kids", "children", "audience",
                                                      "crowd", "people", "group", "class", "team"):
         return j + 2
-    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "you"):
+    if s.at(j) in ("me", "us", "him", "her", "them", "everyone", "everybody", "you") or (
+            s.at(j) == "it" and s.at(j + 1) in ("a", "an")):
         return j + 1
     return j
 

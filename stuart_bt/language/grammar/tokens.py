@@ -75,6 +75,9 @@ _SEPARATE = str.maketrans({
 # a title's full stop, before the name ("shake hands with Dr. Okafor")
 _TITLE_DOT = re.compile(r"\b(dr|mr|mrs|ms|prof|st|mt|capt)\.(?= +[^\W\d_])")
 
+# "write" where only the side can be meant, as recognisers write "right" (same length: offsets hold)
+_WRITE_AS_RIGHT = re.compile(r"\b((?:the|your|to|and|then|hard|bear|veer) )write\b")
+
 _DECIMAL = re.compile(r"\d[.,]\d")
 
 _NUMBER_PIECE = re.compile(r"\d+(?:[.,]\d+)?[^\W_]*|[^\W\d_][^\W_]*(?:'[^\W_]+)*|[.;!?,°&]")
@@ -93,6 +96,8 @@ def tokenize(text: str) -> Tokens:
         low = _BREAK_BEFORE_A_STOP.sub(";", low)
     if "." in low:
         low = _TITLE_DOT.sub(r"\1 ", low)  # "Dr. Okafor": no sentence ends after a title
+    if "write" in low:
+        low = _WRITE_AS_RIGHT.sub(r"\1right", low)  # "slide to the write": a recogniser's "right"
     if _DECIMAL.search(low):  # "1.5": the period is no separator here (rare: the slow way)
         pieces = _NUMBER_PIECE.findall(low.replace("’", "'").translate(_KEEP_POINTS))
     else:
