@@ -15,7 +15,7 @@ from speech_support import NEEDS_ESPEAK
 from stuart_bt.hearing.audio import add_noise, read_audio
 from stuart_bt.hearing.command_grammar import jsgf, matcher, normalise, rules, words
 from stuart_bt.hearing.pronounce import by_rule, number_words, pronounce
-from stuart_bt.hearing.second_opinion import splice
+from stuart_bt.hearing.second_opinion import splice, splices
 from stuart_bt.hearing.vocabulary import Vocabulary
 from stuart_bt.language.parse import Parser
 from stuart_bt.language.readings import choose_reading, rival_reading
@@ -156,6 +156,20 @@ def test_the_grammar_engines_words_go_into_whispers_reading_where_they_differ(re
              "hey Stuart, pick up my screwdriver now."),
             ("", "stuart give me a high five", "Stuart, give me a high five")):
         assert splice(whisper, grammar.split(), vocabulary) == spliced
+
+
+def test_every_choice_of_the_places_where_they_differ_is_a_candidate(resolver):
+    vocabulary = resolver.vocabulary()
+    heard = "case Stuart, I'm the screwdriver."
+    candidates = splices(heard, ["hey", "stuart", "find", "the", "screwdriver", "and", "hug"], vocabulary)
+    assert "hey Stuart, find the screwdriver." in candidates  # the wake phrase and "find", not the extra "and hug"
+    assert "hey Stuart, find the screwdriver and hug." in candidates and len(candidates) == 7
+
+
+def test_a_place_where_the_engines_name_different_things_is_in_every_candidate(resolver):
+    vocabulary = resolver.vocabulary()
+    candidates = splices("case do this, find the bottle.", ["hey", "stuart", "find", "the", "book"], vocabulary)
+    assert candidates and all("book" in c and "bottle" not in c for c in candidates), candidates
 
 
 def _acted_on(transcript, parser, resolver) -> list[tuple[str, str]]:

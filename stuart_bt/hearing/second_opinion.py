@@ -31,7 +31,9 @@ docs/hearing.md).
 from __future__ import annotations
 
 import difflib
+import itertools
 import math
+import re
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -43,8 +45,6 @@ from .vocabulary import Vocabulary
 from .wake_repair import said_to_someone_else, wake_repaired
 
 if TYPE_CHECKING:
-    import re
-
     import numpy as np
 
 # How much less likely per token (average log probability) than whisper's own best reading a
@@ -58,6 +58,9 @@ CORRECTION_MARGIN = 0.75
 # put back where it was said trailed by 0.03-0.6; "hey Stephen, ..." and "hey Steve, ..." said
 # to someone else, were they not ruled out before, trailed by 0.37-0.74.
 REPAIR_MARGIN = 0.5
+# Most places where whisper and the grammar engine differ whose every choice is tried (2^5 - 1
+# splices at most, of which only the sentences of the command grammar are scored)
+MOST_PLACES = 5
 # How far behind the reading heard another may be and still be acted on: the language stage's
 # READING_MARGIN (stuart_bt.language.readings; hearing comes before language and imports none of it)
 COMMAND_MARGIN = 0.15
@@ -84,11 +87,11 @@ class SecondOpinion:
         if self._in_grammar(heard, vocabulary):
             return replace(heard, engine=self.name)
         command = self.grammar.hear(samples, vocabulary)
-        corrected = splice(heard.text, command, vocabulary) if command else ""
-        readings = heard.readings()
-        if not corrected or corrected in (text for text, _ in readings):
+        heard_already = {text for text, _ in heard.readings()}
+        corrections = [c for c in self._corrections(heard.text, command, vocabulary) if c not in heard_already]
+        if not corrections:
             return replace(heard, engine=self.name, seconds=heard.seconds + self.grammar.seconds)
-        score = self._score(heard, corrected, vocabulary)
+        score, corrected = max(zip(self._scores(heard, corrections, vocabulary), corrections, strict=True))
         seconds = heard.seconds + self.grammar.seconds + self.whisper.last_score_s
         if own - score > CORRECTION_MARGIN:  # whisper finds it far less likely: kept, never first
             ranked = sorted([*heard.alternatives, (corrected, score)], key=lambda r: -r[1])
@@ -108,17 +111,35 @@ class SecondOpinion:
             return replace(heard, seconds=seconds)
         return _heard_as(heard, repaired, score, seconds)
 
+    def _corrections(self, heard: str, command: list[str], vocabulary: Vocabulary) -> list[str]:
+        """The sentences of the command grammar made of whisper's ``heard`` with some or all of
+        the grammar engine's words put in (:func:`splices`), the whole correction last in any case."""
+        if not command:
+            return []
+        pattern = self._matcher(vocabulary)
+        whole = splice(heard, command, vocabulary)
+        return [*(c for c in splices(heard, command, vocabulary) if c != whole and pattern.fullmatch(normalise(c))),
+                whole]
+
     def _score(self, heard: Transcript, text: str, vocabulary: Vocabulary) -> float:
         """Whisper's average log probability of ``text`` against the sound it heard as
         ``heard``, on the scale of ``heard``'s own readings (forced decoding of both)."""
-        ours, theirs = self.whisper.score([text, heard.text], vocabulary)
-        return round(heard.avg_logprob + ours - theirs, 4)
+        return self._scores(heard, [text], vocabulary)[0]
 
-    def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary, margin: float = math.inf) -> bool:
-        """Whether a reading at most ``margin`` behind the one heard is a sentence of the command grammar."""
+    def _scores(self, heard: Transcript, texts: list[str], vocabulary: Vocabulary) -> list[float]:
+        """:meth:`_score` of each of ``texts``, ``heard`` forced once for all."""
+        *ours, theirs = self.whisper.score([*texts, heard.text], vocabulary)
+        return [round(heard.avg_logprob + score - theirs, 4) for score in ours]
+
+    def _matcher(self, vocabulary: Vocabulary) -> re.Pattern[str]:
         pattern = self._matchers.get(vocabulary)
         if pattern is None:
             pattern = self._matchers[vocabulary] = matcher(vocabulary)
+        return pattern
+
+    def _in_grammar(self, heard: Transcript, vocabulary: Vocabulary, margin: float = math.inf) -> bool:
+        """Whether a reading at most ``margin`` behind the one heard is a sentence of the command grammar."""
+        pattern = self._matcher(vocabulary)
         least = heard.avg_logprob - margin
         return any(score >= least and pattern.fullmatch(normalise(text)) for text, score in heard.readings())
 
@@ -147,8 +168,59 @@ def splice(heard: str, command: list[str], vocabulary: Vocabulary) -> str:
     surface = heard.split()
     keys = [" ".join(spoken(s)) for s in surface]
     ours = as_digits(command)
+    return _spliced(surface, ours, _differences(keys, ours), vocabulary)
+
+
+def splices(heard: str, command: list[str], vocabulary: Vocabulary) -> list[str]:
+    """:func:`splice` with each choice of the places where the two differ, one or more: the
+    grammar engine hears only commands, so in noise it may hear more than was said ("... the
+    charging dock and give me a hand" as "... and give me a heart and halt") and be right in one
+    place only. A place where the two name different things ("bottle" and "book", "90" and
+    "19") is in every choice: whisper's word there is never kept against the other's, so the
+    correction is whole there or not at all. At most :data:`MOST_PLACES` places (else the whole
+    splice alone)."""
+    surface = heard.split()
+    keys = [" ".join(spoken(s)) for s in surface]
+    ours = as_digits(command)
+    opcodes = _differences(keys, ours)
+    places = [k for k, op in enumerate(opcodes) if op[0] != "equal"]
+    if len(places) > MOST_PLACES:
+        return [_spliced(surface, ours, opcodes, vocabulary)]
+    naming = _naming_words(vocabulary)
+    must = {k for k in places if opcodes[k][0] == "replace" and any(  # where the two name different things
+        w in naming or w[:1].isdigit() for w in ours[opcodes[k][3]:opcodes[k][4]])}
+    out: dict[str, None] = {}
+    for size in range(1, len(places) + 1):
+        for chosen in itertools.combinations(places, size):
+            if not must.issubset(chosen):
+                continue
+            kept = [op if k in chosen or op[0] == "equal" else ("equal", op[1], op[2], op[1], op[1])
+                    for k, op in enumerate(opcodes)]
+            out[_spliced(surface, ours, kept, vocabulary)] = None
+    return list(out)
+
+
+Opcode = tuple[str, int, int, int, int]
+
+
+def _naming_words(vocabulary: Vocabulary) -> frozenset[str]:
+    """The words that name a place, object or gesture, as the grammar engine writes them."""
+    phrases = (*vocabulary.places, *vocabulary.objects, *vocabulary.gestures)
+    return frozenset(w for p in phrases for w in spoken(p)) - _FUNCTION_WORDS
+
+
+_FUNCTION_WORDS = frozenset({"the", "a", "an", "of", "to", "and", "my", "your", "me", "up"})
+
+
+def _differences(keys: list[str], ours: list[str]) -> list[Opcode]:
+    """Where whisper's words (as spoken keys) and the grammar engine's agree and differ."""
+    return [(op, a0, a1, b0, b1) for op, a0, a1, b0, b1 in
+            difflib.SequenceMatcher(a=keys, b=ours, autojunk=False).get_opcodes()]
+
+
+def _spliced(surface: list[str], ours: list[str], opcodes: list[Opcode], vocabulary: Vocabulary) -> str:
+    """``surface`` (whisper's words) with ``ours`` put in where ``opcodes`` say they differ."""
     out: list[str] = []
-    opcodes = difflib.SequenceMatcher(a=keys, b=ours, autojunk=False).get_opcodes()
     for op, a0, a1, b0, b1 in opcodes:
         if op == "equal":
             out += surface[a0:a1]
