@@ -67,6 +67,7 @@ def test_a_plain_stop_after_and_then_stays_the_last_step() -> None:
     "there's a kid right in front of you",
     "Stuart, everyone's following you to the 3D printers, which is great, but stop for a second so the group can "
     "catch up.",
+    "ok stuart um we said move forward two metres but stop you're way too close to the table",
 ])
 def test_a_stop_after_a_lead_in_or_a_word_of_alarm_after_a_plan_wins(text: str) -> None:
     assert actions(text) == ["stop"]

@@ -62,7 +62,7 @@ def test_talk_about_a_command_never_gives_an_intent(command: str, frame: int) ->
 
 
 # a command with a tag word: a check that the robot heard, or a question about the plan?
-PUT_AS_A_QUESTION = [lambda c: f"{c}, right?", lambda c: f"{c}, yeah?", lambda c: f"so {c}, eh?"]
+PUT_AS_A_QUESTION = [lambda c: f"{c}, right?", lambda c: f"{c}, correct?", lambda c: f"so {c}, eh?"]
 
 
 @settings(max_examples=60, deadline=None, derandomize=True)

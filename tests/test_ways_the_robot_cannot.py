@@ -52,3 +52,10 @@ def test_a_gesture_done_before_the_next_step_may_be_said_in_the_perfect(parser):
     result = parser.parse("Stuart, after you've shaken his hand, go back to the charging dock.")
     assert [(i.action, i.target) for i in result.intents] == [("gesture", "shake hand"),
                                                                ("navigate_to_marker", "charging dock")]
+
+
+@pytest.mark.parametrize("text", ["Stuart, hop forward two metres.", "Stuart, go to the kitchen at half two.",
+                                  "Stuart, go to the kitchen at three"])
+def test_a_gait_it_lacks_or_a_clock_time_is_asked_about(parser, text):
+    result = parser.parse(text)
+    assert result.intents and result.doubt, text

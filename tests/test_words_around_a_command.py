@@ -40,6 +40,18 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart go to the parking lot", [("navigate_to_marker", "parking lot")]),
     ("Stuart, wave, kids love that.", [("gesture", "wave")]),
     ("Stuart, give it a quarter turn to the left.", [("turn_by_angle", "")]),
+    ("righto stuart head to the bathroom cheers", [("navigate_to_marker", "bathroom")]),
+    ("Stuart, find the book, yaar.", [("find", "book")]),
+    ("stuart head off to the charging dock now there's a good lad", [("navigate_to_marker", "charging dock")]),
+    ("Stuart, come on, go to the bathroom, there's a good robot.", [("navigate_to_marker", "bathroom")]),
+    ("stuart okay again move forward one metre", [("move_relative", "")]),
+    ("stuart maybe try going to station five", [("navigate_to_marker", "station five")]),
+    ("stuart find the cup thank you very much", [("find", "cup")]),
+    ("stuart pick up the cup for my little girl", [("pick_up", "cup")]),
+    ("stuart walk to the entrance we're heading home now", [("navigate_to_marker", "entrance")]),
+    ("Stuart, let's go to the kitchen, shall we?", [("navigate_to_marker", "kitchen")]),
+    ("stuart i would really appreciate it if you could pick up the book", [("pick_up", "book")]),
+    ("stuart it would be awesome if you gave me a high five", [("gesture", "high five")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)
@@ -60,3 +72,9 @@ def test_write_where_only_a_side_can_be_meant_is_right():
     [step] = Parser().parse("stuart slide to the write a little").intents
     assert (step.action, step.y) == ("move_relative", -0.5)
     assert Parser().parse("stuart write it down").intents == []
+
+
+@pytest.mark.parametrize("text", ["stuart give us a hug actually forget it",
+                                  "stuart walk to the moon and back ha just messing with you"])
+def test_a_retraction_with_no_pause_takes_back_a_gesture_or_a_walk(text):
+    assert Parser().parse(text).intents == []

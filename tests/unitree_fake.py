@@ -126,6 +126,7 @@ class FakeRobot:
         spec: dict[str, Any] = {"service": service, "api": api, "times": times}
         spec.update({"silent": True} if code is None else {"code": code})
         self.order(fault=spec)
+        self.sync()  # the fake has taken it in before the test goes on: a request sent next meets the fault
 
     def wait_for(self, predicate: Callable[[dict[str, Any]], bool], timeout: float = 10.0,
                  what: str = "a record", since: int = 0) -> dict[str, Any]:

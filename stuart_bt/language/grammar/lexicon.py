@@ -89,7 +89,7 @@ RELATIVE = frozenset({"that", "which", "who", "where"})  # end a noun phrase, bu
 ADDRESS_TERMS = frozenset({"buddy", "mate", "pal", "robot", "friend", "sir", "dude", "man", "lad", "lads", "boss",
                            "chief", "champ", "bro", "mister", "madam", "maam", "love", "dear", "darling", "son",
                            "kid", "guys", "folks", "everyone", "everybody", "fella", "fellow", "partner", "sunshine",
-                           "captain", "pet", "chap", "guy"})
+                           "captain", "pet", "chap", "guy", "yaar", "bhai", "lass", "hen", "bud", "cobber"})
 
 # thanks and praise after a command: "cheers", "thanks a lot", "much appreciated", "lovely"
 THANKS = frozenset({"thanks", "thank", "cheers", "ta", "thx", "ty", "lot", "bunch", "million", "much", "appreciated",
@@ -109,6 +109,9 @@ SIGN_OFFS: tuple[tuple[str, ...], ...] = (
     ("come", "on"), ("go", "on"), ("chop",), ("off", "you", "go"), ("there", "you", "go"),
     ("there", "we", "go"), ("here", "we", "go"), ("lets", "go"), ("good", "job"), ("well", "done"), ("nice", "one"),
     ("thank", "you"), ("thanks",), ("cheers",), ("much", "appreciated"), ("if", "you", "dont", "mind"),
+    ("thank", "you", "very", "much"), ("thank", "you", "so", "much"), ("thanks", "very", "much"),
+    ("thanks", "so", "much"),
+    *(("theres", "a", "good", who) for who in ("lad", "boy", "girl", "robot", "chap", "fella", "lass")),
     ("when", "you", "can"), ("when", "youre", "ready"), ("in", "your", "own", "time"), ("no", "rush"),
     ("take", "your", "time"), ("good", "lad"), ("good", "robot"), ("atta", "boy"), ("you", "got", "this"),
     # terms of address of two words ("wave, little guy")
@@ -199,6 +202,8 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("do", "me", "a", "favour", "and"), ("do", "me", "a", "favor", "and"), ("if", "you", "could"),
     ("if", "you", "can"), ("if", "you", "would"), ("could", "you", "maybe"), ("can", "you", "maybe"),
     ("i", "would", "appreciate", "it", "if", "you", "could"), ("id", "appreciate", "it", "if", "you", "could"),
+    ("i", "would", "really", "appreciate", "it", "if", "you", "could"),
+    ("id", "really", "appreciate", "it", "if", "you", "could"),
     ("keep",), ("continue", "to"), ("carry", "on"), ("start",), ("start", "to"), ("begin", "to"), ("begin",),
     ("what", "i", "need", "is", "for", "you", "to"), ("what", "i", "want", "is", "for", "you", "to"),
     ("what", "id", "like", "is", "for", "you", "to"), ("what", "i", "would", "like", "is", "for", "you", "to"),
@@ -212,6 +217,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("please", "to"), ("mind",), ("you", "mind"),
     ("if", "you", "dont", "mind"), ("if", "you", "do", "not", "mind"), ("if", "you", "please"),
     ("sorry", "to", "bother", "you"), ("sorry", "to", "interrupt"), ("sorry", "to", "disturb", "you"),
+    ("come", "on"), ("maybe", "try"), ("again",),
     ("if", "its", "not", "too", "much", "trouble"), ("if", "thats", "ok"), ("if", "thats", "alright"),
 } | {  # a need said ahead: "I'm going to need you to ...", "I'll want you to ..."
     (*subject, *when, verb, "you", "to")
@@ -539,7 +545,8 @@ GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out"
 # ("go to the kitchen, just kidding"; "walk to the kitchen and ..., I'm joking").
 RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("just", "joking"), ("only", "joking"),
-    ("joking",), ("im", "joking"), ("jk",),
+    ("joking",), ("im", "joking"), ("jk",), ("just", "messing"), ("only", "messing"), ("messing", "with", "you"),
+    ("just", "teasing"), ("only", "teasing"), ("pulling", "your", "leg"),
     # "i am joking", "I'm only kidding", "I was just teasing" ("im messing" is below, "im teasing" is none)
     *((*subject, *adverb, word) for subject in (("im",), ("i", "am"), ("i", "was"))
       for adverb in ((), ("only",), ("just",)) for word in ("joking", "kidding", "messing", "teasing")
@@ -585,6 +592,8 @@ BODY_PARTS = frozenset({"hand", "hands", "arm", "arms", "leg", "legs", "foot", "
 
 # a subject and "is" as one word, as recognisers write them without the apostrophe ("it's" -> "its")
 SUBJECT_AND_IS = frozenset({"its", "thats", "theres", "hes", "shes", "whats"})
+# a subject and "are" or "am" as one word: before an ing-form, the start of a statement ("we're heading home")
+SUBJECT_AND_BE = SUBJECT_AND_IS | frozenset({"were", "youre", "theyre", "im"})
 
 # words of time: the robot acts now, so "in twenty minutes" or "later" is never filler
 TIMES = frozenset({"second", "seconds", "minute", "minutes", "hour", "hours", "min", "mins", "sec", "secs", "later",

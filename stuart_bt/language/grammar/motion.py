@@ -91,8 +91,9 @@ def _past_motion_verb(s: ParseState, verb: str, j: int) -> tuple[int, bool] | Fo
         verb in ("come", "go", "get", "head") and s.at(j + 1) in ("over", "down", "up") and s.at(j + 2) in TO_WORDS))
     if back:
         j += 1
-    if s.at(j) in ("over", "up", "down", "across", "round", "around", "through", "out") and s.at(j + 1) in TO_WORDS:
-        j += 1
+    if s.at(j) in ("over", "up", "down", "across", "round", "around", "through", "out", "off") and s.at(
+            j + 1) in TO_WORDS:
+        j += 1  # ("head off to the charging dock")
     return j, back
 
 

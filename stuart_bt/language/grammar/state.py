@@ -18,6 +18,7 @@ from .lexicon import (
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
     STRONG_VERBS,
+    SUBJECT_AND_BE,
     TRAILING,
     VERB_PARTICLES,
 )
@@ -149,8 +150,9 @@ def skip_rest(s: ParseState, j: int) -> int:
                 break  # "turn left just kidding": the driver decides whether it takes the turn back
             if t == "to" and j + 1 < n and toks[j + 1] in ALL_VERBS and toks[j + 1] not in ("back", "hand", "face"):
                 break
-            if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" or starts_a_stop(s, j):
-                break
+            if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" and (
+                    toks[j - 1] not in SUBJECT_AND_BE) or starts_a_stop(s, j):
+                break  # (not "... we're heading home": a statement, no command)
             if verb_and_it(s, j) or t in INSTEAD and s.at(j + 1) in DETERMINERS:
                 break  # "pick up the book take it to ...": the next command; "... actually the book": a correction
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
