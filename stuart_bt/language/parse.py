@@ -162,8 +162,10 @@ class Parser:
         return None
 
     def _said_to_the_robot_somewhere(self, text: str) -> bool:
-        """Whether any sentence of ``text`` holds a command (the rest may be talk)."""
+        """Whether any sentence of ``text`` holds a command (the rest may be talk); the reading is
+        kept for the read of the same text that follows, as :meth:`_said_to_the_robot` keeps its."""
         reading = self.grammar.read(text)
+        self._kept = (text, reading)
         return bool(reading.intents)
 
     def _is_name(self, word: str) -> bool:

@@ -39,7 +39,7 @@ from typing import NamedTuple
 from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
 from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
-from .forms import CHECK, SOFTENED, question_tags, retraction_at
+from .forms import CHECK, SOFTENED, question_tags, retraction_at, takes_back_at
 from .lexicon import (
     ALL_VERBS,
     AUX,
@@ -516,7 +516,7 @@ class _CommandReader:
             self.dead = True
         self.i += 1
         while self.i < s.n and toks[self.i] not in BOUNDARY and not (
-                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i) or _retracted_at(s, self.i)):
+                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i) or takes_back_at(s, self.i)):
             self.i += 1  # "you're late so just stop": the talk ends where a stop is said; "do a dance stop" too
         if self.dead:
             self._mark(start, self.i, TALK)
@@ -669,11 +669,6 @@ RETRACTING = frozenset({("no",), ("no", "wait"), ("wait", "no"), ("scratch", "th
 # ("go to the kitchen, right?": a question about it, or a check that it was heard? the robot asks)
 USED, TALK, CHOICE, ASKED = 1, 2, 3, 4  # ASKED: a tag that puts a command as a question ("..., right?")
 _RUNS = {how: bytes((how,)) * 256 for how in (USED, TALK, CHOICE)}  # MAX_TOKENS marks of each, sliced
-
-
-def _retracted_at(s: ParseState, i: int) -> bool:
-    """Whether a retraction is said at ``i`` ("... make us all a cup of tea haha i'm only joking")."""
-    return s.toks[i] in RETRACTIONS_BY_FIRST and bool(retraction_at(s, i))
 
 
 def _mirrored(s: ParseState, j: int, last: TaskIntent) -> tuple[TaskIntent | None, int]:

@@ -107,6 +107,11 @@ def _unpunctuated_tag(toks: list[str]) -> bytearray | None:
     return out
 
 
+def takes_back_at(s: ParseState, i: int) -> bool:
+    """Whether a retraction is said at ``i`` ("... haha i'm only joking", "... actually forget it")."""
+    return s.toks[i] in RETRACTIONS_BY_FIRST and bool(retraction_at(s, i))
+
+
 def retraction_at(s: ParseState, i: int) -> int:
     """The length of a retraction at ``i`` ("just kidding", "forget it", "don't."), or 0. A lone
     "don't"/"do not" takes back only when nothing follows it in the clause ("no, don't."): before a

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..intents import GESTURE
-from .forms import retraction_at
+from .forms import takes_back_at
 from .lexicon import (
     BODY,
     BOUNDARY,
@@ -16,7 +16,6 @@ from .lexicon import (
     GESTURE_PHRASES,
     GESTURE_VERB_NAMES,
     GESTURES_BY_FIRST,
-    RETRACTIONS_BY_FIRST,
     STRONG_VERBS,
 )
 from .state import ParseState, Result, starts_a_stop
@@ -35,7 +34,7 @@ def skip_gesture_tail(s: ParseState, j: int) -> int:
             break  # "wave with your right hand": a gesture plays as it was made, so the robot asks
         if toks[j] in _WHEN:
             break  # "wave to the visitors at half past two": a time the robot cannot wait for, so it asks
-        if toks[j] in RETRACTIONS_BY_FIRST and retraction_at(s, j):
+        if takes_back_at(s, j):
             break  # "give us a hug actually forget it": what follows takes it back
         j += 1
     return j

@@ -12,7 +12,6 @@ from .lexicon import (
     DETERMINERS,
     GENERIC,
     HOME,
-    INSTEAD,
     NP_BLOCK,
     NP_LEADERS,
     NP_STOP,
@@ -27,7 +26,7 @@ from .lexicon import (
     VERB_PARTICLES,
     WH,
 )
-from .state import ParseState, Result, starts_a_stop, verb_and_it
+from .state import ParseState, Result, said_instead_at, starts_a_stop, verb_and_it
 
 
 def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
@@ -79,8 +78,8 @@ def _something_else_at(s: ParseState, i: int, j: int) -> bool:
         return True  # ("go to the kitchen hold it": the stop is read, and wins)
     if t in ALL_VERBS and j + 1 < n and (t, toks[j + 1]) in VERB_PARTICLES:
         return True
-    if t in INSTEAD and s.at(j + 1) in DETERMINERS:
-        return True  # "pick up the apple hmm actually the book": something said instead
+    if said_instead_at(s, j):
+        return True  # "pick up the apple hmm actually the book"
     if t in SUBJECT_AND_IS and s.at(j + 1) not in BOUNDARY or t in DETERMINERS and j + 1 in s.contracted:
         return True  # "find the apple its my lunch", "go to the dock your battery's low": a statement follows
     if t in RETRACTIONS_BY_FIRST and s.phrase_at(j, RETRACTIONS_BY_FIRST) is not None:

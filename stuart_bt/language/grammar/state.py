@@ -123,6 +123,12 @@ def starts_a_stop(s: ParseState, j: int) -> bool:
     return stop_phrase_end(s, j) > 0
 
 
+def said_instead_at(s: ParseState, j: int) -> bool:
+    """Whether a thing said instead of the one before starts at ``j``, with no pause ("pick up the
+    apple hmm actually the book")."""
+    return s.toks[j] in INSTEAD and s.at(j + 1) in DETERMINERS
+
+
 def verb_and_it(s: ParseState, j: int) -> bool:
     """Whether a verb and "it" or "them" start a new command at ``j`` ("... take it to the reading
     room", "... bring them here"): a verb with a pronoun for its object is never part of a name."""
@@ -153,7 +159,7 @@ def skip_rest(s: ParseState, j: int) -> int:
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" and (
                     toks[j - 1] not in SUBJECT_AND_BE) or starts_a_stop(s, j):
                 break  # (not "... we're heading home": a statement, no command)
-            if verb_and_it(s, j) or t in INSTEAD and s.at(j + 1) in DETERMINERS:
+            if verb_and_it(s, j) or said_instead_at(s, j):
                 break  # "pick up the book take it to ...": the next command; "... actually the book": a correction
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
                 break  # "... the corner do a high five", "... give everyone a wave": the next command
