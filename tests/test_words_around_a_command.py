@@ -52,6 +52,11 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("Stuart, let's go to the kitchen, shall we?", [("navigate_to_marker", "kitchen")]),
     ("stuart i would really appreciate it if you could pick up the book", [("pick_up", "book")]),
     ("stuart it would be awesome if you gave me a high five", [("gesture", "high five")]),
+    ("stuart buddy find the screwdriver", [("find", "screwdriver")]),
+    ("Stuart, old pal, go to the workbench.", [("navigate_to_marker", "workbench")]),
+    ("hey stuart you know what, turn around", [("turn_around", "")]),
+    ("Stuart, go to the kitchen, the floor there is dry now.", [("navigate_to_marker", "kitchen")]),
+    ("stuart walk another two metres", [("move_relative", "")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)

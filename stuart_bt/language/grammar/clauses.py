@@ -161,13 +161,13 @@ def _thanks_ahead(s: ParseState, i: int) -> int:
 # polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
 _BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
                                  ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"), ("again",),
-                                 ("maybe", "try"), ("come", "on"),
+                                 ("maybe", "try"), ("come", "on"), ("you", "know", "what"),
                                  *((subject, verb) for subject in ("i", "we")
                                    for verb in ("guess", "suppose", "reckon"))})
 
 
 # openers a pause may follow before the verb ("come on, go to the bathroom")
-_OPENERS_BEFORE_A_PAUSE = frozenset({("come", "on")})
+_OPENERS_BEFORE_A_PAUSE = frozenset({("come", "on"), ("you", "know", "what")})
 
 
 def _request(s: ParseState, i: int) -> Result:
@@ -223,7 +223,7 @@ def opens_conversation(s: ParseState, i: int) -> bool:
         return True
     if i + 1 < n and (toks[i + 1] in AUX or toks[i + 1] in _REPORTED) and t not in ALL_VERBS and t not in BOUNDARY:
         return True  # "..., Jess is filming", "Ana said you'd go ...": a name and its verb, a statement
-    if names_a_doer(s, i):
+    if names_a_doer(s, i) or _names_and_is(s, i):
         return True
     if t in WISH_QUESTIONS_BY_FIRST and s.phrase_at(i, WISH_QUESTIONS_BY_FIRST) is not None:
         return True
@@ -231,6 +231,17 @@ def opens_conversation(s: ParseState, i: int) -> bool:
                             for k in range(i, min(i + 3, n))):
         return True  # "your battery's low", "the coffee's ready": a noun and "is", a statement
     return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
+
+
+def _names_and_is(s: ParseState, i: int) -> bool:
+    """Whether a thing is named at ``i`` and then said to be something ("your battery is almost
+    empty", "this floor was wet"): a statement, whatever the noun."""
+    if s.toks[i] not in DETERMINERS:
+        return False
+    for k in (i + 2, i + 3):
+        if s.at(k) in AUX:
+            return _no_verb_before(s, i, k) and all(s.toks[m] not in BOUNDARY for m in range(i, k))
+    return False
 
 
 def _no_verb_before(s: ParseState, i: int, k: int) -> bool:
@@ -298,8 +309,9 @@ def read_clause(s: ParseState, i: int) -> Result:
     if i >= n:
         return None
     t = toks[i]
-    if s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY and s.at(
-            i + 1) not in _PERSONAL):  # ("stop you are about to hit the wall": a new sentence, no pause written)
+    if (s.at(i + 1) in COPULA or (s.at(i + 2) in COPULA and s.at(i + 1) not in BOUNDARY and s.at(
+            i + 1) not in _PERSONAL)) and not (t in PLAIN_STOPS and "were" in (s.at(i + 1), s.at(i + 2))):
+        # ("stop you are about to hit the wall": a new sentence, no pause written; "stop were filming": "we're")
         return None  # "stop signs are red", "turn left is wrong": the verb is a noun here
     if t in VISIT_VERBS and s.at(i + 1) == "by" and (got := read_visit_by(s, i)) is not None:
         return got

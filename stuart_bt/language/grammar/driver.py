@@ -41,6 +41,7 @@ from ..numbers import word_value
 from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
 from .forms import CHECK, SOFTENED, question_tags, retraction_at, takes_back_at
 from .lexicon import (
+    ADDRESS_TERMS,
     ALL_VERBS,
     AUX,
     BODY_PARTS,
@@ -74,6 +75,7 @@ from .lexicon import (
 from .motion import UNTIL_VERBS
 from .nouns import read_arrival
 from .state import Defaults, ParseState, Spec, may_end, skip_rest, starts_a_stop, stop_phrase_end
+from .stopping import says_why_at
 from .tokens import Tokens, tokenize
 
 
@@ -182,9 +184,7 @@ class _CommandReader:
             self.i += 1
             self.sentence_at = len(self.out)
             return True
-        if t in s.vocatives and not self.dead:
-            self._mark(self.i, self.i + 1, USED)  # "..., actually Stuart stop right there": the name again
-            self.i += 1
+        if self._called_again():
             return True
         if t in INTERJECTIONS and (self.out or self.held) and not self.dead and self._before_a_correction():
             return True
@@ -231,6 +231,17 @@ class _CommandReader:
         elif kind == "reorder" and self.out:
             self.reorder_at = min(self.sentence_at, len(self.out))  # "go there and wave, but first turn around"
         return True
+
+    def _called_again(self) -> bool:
+        """The robot called at ``i`` by its name again ("..., actually Stuart stop right there") or,
+        opening a sentence, by a term of address ("Stuart mate pick up the apple"): consumed."""
+        if self.dead:
+            return False
+        s, i = self.s, self.i
+        called = 1 if self.toks[i] in s.vocatives else _called_at(s, i) if self._opens_sentence(i) else 0
+        self._mark(i, i + called, USED)
+        self.i += called
+        return called > 0
 
     def _corrects_after(self, i: int) -> bool:
         """A correction or a retraction at ``i``, after a comma or more interjections there
@@ -373,7 +384,8 @@ class _CommandReader:
             self.i = self.clause_end = skip_rest(s, j)  # (a stop needs none: "if you're about to fall, stop")
             s.first = False
             return
-        if s.at(j) in COPULA and not subordinate and not (s.at(j) == "were" and j + 1 in self.tokens.gerunds):
+        if s.at(j) in COPULA and not subordinate and not (s.at(j) == "were" and j + 1 in self.tokens.gerunds) and not (
+                specs[-1][0] == STOP and says_why_at(s, j)):  # ("stop were filming": "we're", as a recogniser writes)
             # "going to the kitchen was fun": a subject, so a statement ("... we're heading home": a remark)
             self.dead, self.correct_at, self.reorder_at, self.hold = True, None, None, False
             self._mark(start, j, TALK)
@@ -386,7 +398,7 @@ class _CommandReader:
             return
         if specs[0][0] == STOP and not subordinate and all(sp[0] == STOP for sp in specs) and (
                 self._interjected(start) or s.at(start + 1) in PLAIN_STOPS or self.toks[start] in _CHANGE_OF_MIND
-                or not _URGENT.isdisjoint(self.toks[start:j])):
+                or not _URGENT.isdisjoint(self.toks[start:j]) or says_why_at(s, j)):
             self._forget_all()  # "..., oh no, stop!", "... and stop stop stop": said over a plan, it cancels it
         self.after_subordinate = subordinate
         restated = self._restated(start, j, specs)
@@ -422,7 +434,7 @@ class _CommandReader:
         why = _reason_at(self.toks, j, self.i)
         if all(sp[0] in _DONE_FOR_SOMEONE for sp in specs):  # not "look for the cup": its thing
             why = min(why, _for_whom_at(self.toks, start + 1, self.i))
-        if why == self.i > j and self._remark_at(j):
+        if why == self.i > j and (self._remark_at(j) or specs[-1][0] == STOP and says_why_at(s, j)):
             self.dead, self.i = True, j  # "pick up the cup the kids want to see it": a statement run on,
             return  # no pause written; talk to the end of its sentence
         if why < self.i:  # "turn around so we can see your back", "... because I said so": said, not asked
@@ -564,6 +576,19 @@ class _CommandReader:
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
 
+def _called_at(s: ParseState, i: int) -> int:
+    """How many words at ``i`` call the robot a name before a command with no pause ("mate pick
+    up the apple", "my friend, wave"): one or two, else 0."""
+    k = i + 1 if s.toks[i] in _FOND and s.at(i + 1) in _CALLED else i
+    return k + 1 - i if s.toks[k] in _CALLED and (s.at(k + 1) in ALL_VERBS or s.at(k + 1) == ",") else 0
+
+
+# terms of address for the robot alone (not "guys", "everyone": those call others) and the
+# words said before one ("my friend", "old pal")
+_CALLED = ADDRESS_TERMS - {"everyone", "everybody", "guys", "folks", "lads", "kid", "son"}
+_FOND = frozenset({"my", "old", "little", "big", "good", "dear"})
+
+
 def _stop_said_at(s: ParseState, i: int) -> bool:
     """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop whose clause
     ends after it, after a pause, "but" or "so", perhaps with softening words between ("..., but
@@ -619,8 +644,9 @@ def _stop_ends_talk(s: ParseState, i: int) -> bool:
     of talk ("you're going way too far you were only meant to do half a metre halt"): an order
     tacked on to the talk, never the word inside it ("I told him to stop", "the bus stop", "why
     did you stop", "don't stop")."""
-    if s.toks[i - 1] in _NO_ORDER_BEFORE:
-        return False
+    if s.toks[i - 1] in _NO_ORDER_BEFORE and not (i > 1 and s.toks[i - 1] in _OBJECT_FORMS
+                                                  and s.toks[i - 2] in _PREPOSITIONS):
+        return False  # (but "... with all the printers on it stop": "it" is the printers, not who stops)
     end = stop_phrase_end(s, i)
     if not end:
         return False
@@ -641,13 +667,19 @@ _NO_ORDER_BEFORE = frozenset({
     "bus", "pit", "last", "next", "final", "first", "full", "quick", "one", "every", "each", "deep", "ever", "always",
     "often", "sometimes", "usually"})
 
+# pronouns that, after a preposition, are no subject of the stop after them ("... on it stop")
+_OBJECT_FORMS = frozenset({"it", "me", "us", "them", "him", "her"})
+_PREPOSITIONS = frozenset({"on", "in", "at", "with", "to", "for", "from", "into", "onto", "near", "behind", "by",
+                           "under", "over", "past", "towards", "toward", "about", "around", "beside", "of"})
+
 # words said just before a stop that ends a stretch of talk ("..., actually stop", "..., just stop")
 _BEFORE_A_STOP = frozenset({"just", "please", "now", "so", "actually", "oh", "ok", "no", "wait", "then", "honestly",
                             "seriously", "really", "first"})
 
 # words that make a stop urgent, and the stop words of alarm: said after "and then", it still
 # calls off the plan, not ends it ("go to station six and find the book and then um stop
-# everything right now", "... and then halt"; "... and then stop" is the plan's last step)
+# everything right now", "... and then halt"; "... and then stop" is the plan's last step); so
+# does a warning said straight after it ("... and then stop you're going to knock over the tripod")
 _URGENT = frozenset({"everything", "now", "immediately", "instantly", "emergency", "asap", "halt", "freeze"})
 
 # words that open a stop said as a change of mind, even after "and" ("go to the workbench and um

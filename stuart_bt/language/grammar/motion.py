@@ -155,7 +155,8 @@ def _motion_onwards(s: ParseState, verb: str, j: int, t: str) -> Result:
 _BARE_PLACE_VERBS = frozenset({"go", "head", "walk", "run", "hurry", "rush", "drive"})
 _HOW_NOT_WHERE = frozenset({"faster", "slower", "quicker", "closer", "further", "farther", "crazy", "wild", "quiet",
                             "slow", "fast", "quick", "easy", "alone", "together", "outside", "inside", "away", "first",
-                            "last", "again", "already", "instead", "nuts", "mad", "live", "off", "out", "up", "down"})
+                            "last", "again", "already", "instead", "nuts", "mad", "live", "off", "out", "up", "down",
+                            "another"})  # ("walk another metre": how far, said again)
 
 
 def _bare_place(s: ParseState, j: int) -> Result:

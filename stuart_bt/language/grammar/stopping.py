@@ -7,9 +7,11 @@ from __future__ import annotations
 from ..intents import NAVIGATE, STOP
 from .lexicon import (
     BOUNDARY,
+    POLITE_BY_FIRST,
     STOP_VERB_NEEDS,
     STRONG_VERBS,
     SURFACES,
+    WH,
 )
 from .nouns import read_noun_phrase, read_place
 from .state import ParseState, Result, skip_rest
@@ -37,11 +39,27 @@ def read_stop(s: ParseState, i: int) -> Result:
             return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], skip_rest(s, e)
     if verb == "stand" and nxt not in ("still", "there", "by", "put", "here", "fast", "your", "right"):
         return None  # "stand in line"
-    while j < n and toks[j] not in BOUNDARY:
+    while j < n and toks[j] not in BOUNDARY and not says_why_at(s, j):
         if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
             break
         j += 1
     return [(STOP, "", 0.0, 0.0, 0.0)], j
+
+
+def says_why_at(s: ParseState, j: int) -> bool:
+    """Whether a statement of its own starts at ``j``, right after a stop with no pause: a new
+    subject ("stop you're going to hit the table", "stop I need to reset the map before you go
+    ..."), not a request ("stop I want you to ...") nor the stop's own words ("stop what you're
+    doing")."""
+    t = s.at(j)
+    return t in _NEW_SPEAKER_SUBJECTS and s.toks[j - 1] not in WH and (
+        t not in POLITE_BY_FIRST or s.phrase_at(j, POLITE_BY_FIRST) is None)
+
+
+# subjects that open a statement when said straight after a stop (not "it" nor "there": "stop
+# it", "stop there" are the stop's own words)
+_NEW_SPEAKER_SUBJECTS = frozenset({"i", "im", "ive", "id", "we", "were", "weve", "wed", "he", "hes", "she", "shes",
+                                   "they", "theyre", "theyve", "youre", "youve", "theres", "thats", "its"})
 
 
 # words before "stop" that make it a place on a route ("next stop, the kitchen")

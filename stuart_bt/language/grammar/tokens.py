@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 from ..numbers import UNITS, word_value
-from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, HESITANT, INTERRUPTING, PLAIN_STOPS, SPLITS
+from .lexicon import DISFLUENCIES, GERUNDS, HARD_STOPS, HESITANT, INTERRUPTING, PLAIN_STOPS, SPLITS, STOP_VERBS
 
 _NUM_UNIT = re.compile(r"(\d+(?:[.,]\d+)?)([^\W\d_]+|°)$")
 
@@ -39,7 +39,10 @@ class Tokens:
 
     def without(self, token: str) -> Tokens:
         """The same tokens with every ``token`` left out."""
-        keep = [k for k, t in enumerate(self.toks) if t != token]
+        return self.kept([k for k, t in enumerate(self.toks) if t != token])
+
+    def kept(self, keep: list[int]) -> Tokens:
+        """The same tokens with only those at the indices ``keep`` (in order)."""
         gerunds = frozenset(new for new, old in enumerate(keep) if old in self.gerunds)
         contracted = frozenset(new for new, old in enumerate(keep) if old in self.contracted)
         return Tokens([self.toks[k] for k in keep], [self._src[k] for k in keep], self._raw, self._low, self.read_to,
@@ -126,8 +129,41 @@ def tokenize(text: str) -> Tokens:
             src.append(k)
             last = t
         if len(toks) >= MAX_TOKENS:
-            return Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds), frozenset(contracted))
-    return Tokens(toks, src, pieces, low, None, frozenset(gerunds), frozenset(contracted))
+            return _once(Tokens(toks, src, pieces, low, k + 1, frozenset(gerunds), frozenset(contracted)))
+    return _once(Tokens(toks, src, pieces, low, None, frozenset(gerunds), frozenset(contracted)))
+
+
+_NEVER_FOLDED = _PAUSES | STOP_VERBS  # a stop said again is kept (see _special_piece); a pause ends a phrase
+
+
+def _once(tokens: Tokens) -> Tokens:
+    """``tokens`` with a phrase of two or three words said twice with no pause kept once: "keep
+    going keep going a bit more", "go to go to the kitchen" (a speaker restarting, as "the the" is
+    for one word). Said with a pause ("turn left, turn left") it is two steps and stays."""
+    toks = tokens.toks
+    drop: set[int] = set()
+    k, end = 2, len(toks)
+    while k < end:
+        n = _repeat_before(toks, k)
+        if n:
+            drop.update(range(k, k + n))
+            k += n
+        else:
+            k += 1
+    if not drop:
+        return tokens
+    return tokens.kept([k for k in range(len(toks)) if k not in drop])
+
+
+def _repeat_before(toks: list[str], k: int) -> int:
+    """The length (2 or 3) of a phrase that ends just before ``k`` and is said again from ``k``;
+    0 when none is, or when it holds a pause or a stop."""
+    for n in (2, 3):
+        if k >= n and k + n <= len(toks) and toks[k] == toks[k - n] and toks[k - n:k] == toks[k:k + n] \
+                and _NEVER_FOLDED.isdisjoint(toks[k:k + n]):
+            return n
+    return 0
+
 
 _GERUND, _CONTRACTED = 1, 2  # what a special piece was, besides its tokens
 
