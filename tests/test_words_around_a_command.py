@@ -83,3 +83,16 @@ def test_write_where_only_a_side_can_be_meant_is_right():
                                   "stuart walk to the moon and back ha just messing with you"])
 def test_a_retraction_with_no_pause_takes_back_a_gesture_or_a_walk(text):
     assert Parser().parse(text).intents == []
+
+
+@pytest.mark.parametrize("run_together,apart", [
+    ("stuart backup please", "stuart back up please"),
+    ("stuart stepforward", "stuart step forward"),
+    ("stuart turnright ninety degrees", "stuart turn right ninety degrees"),
+    ("stuart give them a facewave", "stuart give them a face wave"),
+    ("stuart handsup", "stuart hands up"),
+])
+def test_a_verb_and_its_particle_run_together_are_read_apart(run_together, apart):
+    got, want = Parser().parse(run_together), Parser().parse(apart)
+    assert got.intents and [(i.action, i.target, i.x, i.yaw) for i in got.intents] == [
+        (i.action, i.target, i.x, i.yaw) for i in want.intents] and got.doubt == []

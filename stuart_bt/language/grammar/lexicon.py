@@ -20,12 +20,18 @@ DISFLUENCIES = frozenset({"um", "umm", "uh", "uhh", "uhm", "er", "erm", "ehm", "
                           "ha", "hah", "haha", "hahaha", "heh", "hehe", "lol"})  # hesitations and laughter
 
 SPLITS: dict[str, tuple[str, ...]] = {
-    "pickup": ("pick", "up"), "highfive": ("high", "five"), "uturn": ("u", "turn"), "xray": ("x", "ray"),
+    "uturn": ("u", "turn"), "xray": ("x", "ray"),
     "wanna": ("want", "to"), "gotta": ("got", "to"), "cannot": ("can", "not"), "nevermind": ("never", "mind"),
-    "lookfor": ("look", "for"), "okay": ("ok",), "alright": ("ok",), "estop": ("e", "stop"),
+    "okay": ("ok",), "alright": ("ok",), "estop": ("e", "stop"),
     "anticlockwise": ("anticlockwise",), "counterclockwise": ("anticlockwise",),
     "metres": ("metres",),
     "gimme": ("give", "me"), "lemme": ("let", "me"), "gonna": ("going", "to"), "ya": ("you",),
+    # a verb and its particle, or a gesture's two words, as a recogniser runs them together ("stuart backup")
+    **{first + second: (first, second) for first, second in (
+        ("back", "up"), ("back", "off"), ("step", "back"), ("step", "forward"), ("step", "aside"), ("turn", "left"),
+        ("turn", "right"), ("turn", "round"), ("turn", "back"), ("go", "back"), ("move", "back"), ("move", "forward"),
+        ("walk", "forward"), ("spin", "around"), ("look", "around"), ("hands", "up"), ("face", "wave"),
+        ("shake", "hands"), ("shake", "hand"), ("look", "for"), ("pick", "up"), ("high", "five"))},
 }
 
 HARD_STOPS = frozenset({".", ";", "!", "?"})
