@@ -43,3 +43,13 @@ def test_a_stop_at_the_end_of_talk_after_a_pronoun_object_wins() -> None:
     assert actions("stuart you're heading for the bench with the soldering iron on it stop") == ["stop"]
     assert actions("stuart the kids are all standing right next to them halt") == ["stop"]
     assert actions("Stuart, the noise made it stop") == []
+
+
+@pytest.mark.parametrize("asked", ["could you please stop there and wait for us", "can you stop for a second",
+                                   "would you stop"])
+def test_a_stop_asked_for_inside_talk_with_no_pause_wins(asked: str) -> None:
+    assert actions(f"stuart um you're heading the wrong way towards the workbench {asked}") == ["stop"]
+
+
+def test_asking_why_it_would_stop_is_no_stop() -> None:
+    assert actions("stuart why would you stop at the kitchen") == []

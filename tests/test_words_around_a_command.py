@@ -57,6 +57,9 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("hey stuart you know what, turn around", [("turn_around", "")]),
     ("Stuart, go to the kitchen, the floor there is dry now.", [("navigate_to_marker", "kitchen")]),
     ("stuart walk another two metres", [("move_relative", "")]),
+    ("stuart pick up the cup for us grown ups", [("pick_up", "cup")]),
+    ("Stuart, you know, just turn around.", [("turn_around", "")]),
+    ("stuart turn round and face the other way", [("turn_around", "")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)
@@ -96,3 +99,18 @@ def test_a_verb_and_its_particle_run_together_are_read_apart(run_together, apart
     got, want = Parser().parse(run_together), Parser().parse(apart)
     assert got.intents and [(i.action, i.target, i.x, i.yaw) for i in got.intents] == [
         (i.action, i.target, i.x, i.yaw) for i in want.intents] and got.doubt == []
+
+
+def test_turning_around_twice_is_still_two_turns():
+    assert [i.action for i in Parser().parse("stuart turn around and turn around again").intents] == [
+        "turn_around", "turn_around"]
+
+
+@pytest.mark.parametrize("text", [
+    "stuart you pick up cups faster than my kids tidy their room",
+    "Stuart, you walk to the kitchen quicker than I do.",
+    "stuart fetch me the book and a sandwich ha ha only kidding",
+    "Stuart, go to the entrance and the car park, just joking",
+])
+def test_comparisons_and_jokes_taken_back_after_talk_move_nothing(text):
+    assert Parser().parse(text).intents == [], text

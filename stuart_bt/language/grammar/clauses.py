@@ -121,7 +121,8 @@ def _polite(s: ParseState, i: int) -> int:
                 i += 2
                 continue
             if t == "you" and i + 1 < n and toks[i + 1] in ALL_VERBS and toks[i + 1] not in ("look", "do", "stand",
-                                                                                             "back", "hold"):
+                                                                                             "back", "hold") and (
+                    not compares(s, i)):  # ("you pick up bottles faster than our interns": a comparison)
                 i += 1
                 continue
             break
@@ -131,7 +132,7 @@ def _polite(s: ParseState, i: int) -> int:
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
         after = i + len(p) + (1 if p in _OPENERS_BEFORE_A_PAUSE and s.at(i + len(p)) == "," else 0)
-        if p in _BEFORE_A_VERB_ONLY and s.at(after) not in ALL_VERBS and not (
+        if p in _BEFORE_A_VERB_ONLY and s.at(after + (s.at(after) == "just")) not in ALL_VERBS and not (
                 p == ("like",) and s.at(i + 1) in MODALS and s.at(i + 2) == "you"):
             break  # "like" is a filler only before a verb ("could you like go there") or a request ("like could you")
         i += len(p)
@@ -161,13 +162,13 @@ def _thanks_ahead(s: ParseState, i: int) -> int:
 # polite openers only when a verb follows: "could you like go", "help me find", "mind getting"
 _BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
                                  ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"), ("again",),
-                                 ("maybe", "try"), ("come", "on"), ("you", "know", "what"),
+                                 ("maybe", "try"), ("come", "on"), ("you", "know", "what"), ("you", "know"),
                                  *((subject, verb) for subject in ("i", "we")
                                    for verb in ("guess", "suppose", "reckon"))})
 
 
 # openers a pause may follow before the verb ("come on, go to the bathroom")
-_OPENERS_BEFORE_A_PAUSE = frozenset({("come", "on"), ("you", "know", "what")})
+_OPENERS_BEFORE_A_PAUSE = frozenset({("come", "on"), ("you", "know", "what"), ("you", "know")})
 
 
 def _request(s: ParseState, i: int) -> Result:
@@ -230,7 +231,17 @@ def opens_conversation(s: ParseState, i: int) -> bool:
     if s.contracted and any(k in s.contracted and k + 1 < n and toks[k + 1] not in BOUNDARY and _no_verb_before(s, i, k)
                             for k in range(i, min(i + 3, n))):
         return True  # "your battery's low", "the coffee's ready": a noun and "is", a statement
-    return t == "you" and not (i + 1 < n and toks[i + 1] in ALL_VERBS)
+    return t == "you" and (not (i + 1 < n and toks[i + 1] in ALL_VERBS) or compares(s, i))
+
+
+def compares(s: ParseState, i: int) -> bool:
+    """Whether the sentence from ``i`` compares ("you walk faster than my dad"): a statement."""
+    for k in range(i, s.n):
+        if s.toks[k] in HARD_STOPS:
+            return False
+        if s.toks[k] == "than":
+            return True
+    return False
 
 
 def _names_and_is(s: ParseState, i: int) -> bool:
@@ -266,6 +277,9 @@ def _asks_a_wish(s: ParseState, i: int) -> bool:
     if wish is None:
         return False
     polite = s.phrase_at(i, POLITE_BY_FIRST) if s.toks[i] in POLITE_BY_FIRST else None
+    if polite == wish and polite in _BEFORE_A_VERB_ONLY:  # "you know, just go to the kitchen": a filler
+        after = i + len(polite) + (s.at(i + len(polite)) == ",")
+        return s.at(after + (s.at(after) == "just")) not in ALL_VERBS
     return polite is None or len(polite) <= len(wish)
 
 

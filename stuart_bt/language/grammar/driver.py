@@ -71,6 +71,7 @@ from .lexicon import (
     TIME_OPENERS,
     TIMES,
     TRAILING,
+    WH,
 )
 from .motion import UNTIL_VERBS
 from .nouns import read_arrival
@@ -307,6 +308,13 @@ class _CommandReader:
         if (before == "," and (t == "please" or (t in MODALS and s.at(i + 1) == "you"))) or _stop_said_at(s, i):
             self.dead = False  # "I know I told you to go there, but stop right now": a stop always wins
             return False
+        taken_back = retraction_at(s, i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) else 0
+        if taken_back and may_end(s, i + taken_back):  # "fetch me a cup and a biscuit ha ha only joking":
+            self._forget_all()  # taken back at the end of the talk that followed the command
+            self.taken_back = True
+            self._mark(i, i + taken_back, USED)
+            self.i += taken_back
+            return True
         self.marks[i] = TALK
         self.i += 1
         return True
@@ -439,6 +447,8 @@ class _CommandReader:
             return  # no pause written; talk to the end of its sentence
         if why < self.i:  # "turn around so we can see your back", "... because I said so": said, not asked
             self._mark(why, self.i, TALK)
+        elif s.at(j) == "for" and s.at(j + 1) in _WHOM and _only_who(self.toks[j + 2:self.i]):
+            self._mark(j, self.i, USED)  # "find the bottle for us old timers": who "us" are
         if specs[-1][1] and s.at(j) in QUALIFIERS and _says_which(self.toks[j:self.i]):
             self._mark(j, self.i, USED)  # "the apple on the counter": which apple, not a new step
 
@@ -466,10 +476,14 @@ class _CommandReader:
         pause says how far the move or turn just asked for goes, when that one said no amount.
         The last intent with that amount (its direction kept), else None (a direction said again,
         "then", or an amount said before make it another step: "turn left, then ninety degrees")."""
-        if len(specs) != 1 or not self.out or self.toks[start - 1] != ",":
+        if len(specs) != 1 or not self.out:
             return None
         act, _, x, y, yaw = specs[0]
         last = self.out[-1]
+        if act == TURN_AROUND == last.action and self.toks[start] == "face":
+            return last  # "spin round and face the other way": where the turn ends, not a second turn
+        if self.toks[start - 1] != ",":
+            return None
         if act != last.action or act not in (MOVE, TURN) or _names_a_way(self.toks[start:end]):
             return None
         if _names_an_amount(tokenize(last.raw_text).toks):
@@ -528,7 +542,7 @@ class _CommandReader:
             self.dead = True
         self.i += 1
         while self.i < s.n and toks[self.i] not in BOUNDARY and not (
-                _stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i) or takes_back_at(s, self.i)):
+                (_stop_said_at(s, self.i) if self.dead else starts_a_stop(s, self.i)) or takes_back_at(s, self.i)):
             self.i += 1  # "you're late so just stop": the talk ends where a stop is said; "do a dance stop" too
         if self.dead:
             self._mark(start, self.i, TALK)
@@ -602,7 +616,7 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
     b = i - 1
     while b > 0 and s.toks[b] in _BEFORE_A_STOP and s.toks[b] != "so":
         b -= 1  # ("..., but first stop because ...": the words between were read as a new clause's)
-    if s.toks[b] not in (",", "but", "so"):
+    if s.toks[b] not in (",", "but", "so") and not _asked_to_stop(s, b):
         return _stop_ends_talk(s, i)
     k = i
     while k < i + 8:  # "..., but please just stop", "..., actually Stuart stop right there", "... but right now
@@ -616,6 +630,13 @@ def _stop_said_at(s: ParseState, i: int) -> bool:
             break
     end = stop_phrase_end(s, k)
     return end > 0 and _stop_ends(s, end)
+
+
+def _asked_to_stop(s: ParseState, b: int) -> bool:
+    """Whether the words up to ``b``, just before a stop, ask the robot for it with no pause
+    before ("... towards the bathroom could you please stop there"), not ask why ("why would you
+    stop")."""
+    return s.toks[b] == "you" and b > 0 and s.toks[b - 1] in MODALS and (b < 2 or s.toks[b - 2] not in WH)
 
 
 def _stop_ends(s: ParseState, j: int) -> bool:
@@ -790,6 +811,15 @@ _PURPOSE_SUBJECTS = frozenset({"that", "we", "i", "you", "they", "everyone", "ev
                                "the", "our", "my", "visitors", "guests", "kids", "children"})
 
 _NOT_WHICH = TIMES | BODY_PARTS | {"your"}
+
+
+def _only_who(words: list[str]) -> bool:
+    """Whether ``words`` after "for us" can only say who "us" are: no verb, no time, no direction."""
+    return all(w not in ALL_VERBS and w not in TIMES and w not in DIRECTIONS for w in words)
+
+
+# the people a command is done for, as said at its end ("... for us old timers")
+_WHOM = frozenset({"me", "us", "them", "him", "her"})
 
 
 def _names_a_way(words: Iterable[str]) -> bool:

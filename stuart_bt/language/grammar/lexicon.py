@@ -220,7 +220,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
-    ("please", "to"), ("mind",), ("you", "mind"), ("you", "know", "what"),
+    ("please", "to"), ("mind",), ("you", "mind"), ("you", "know", "what"), ("you", "know"),
     ("if", "you", "dont", "mind"), ("if", "you", "do", "not", "mind"), ("if", "you", "please"),
     ("sorry", "to", "bother", "you"), ("sorry", "to", "interrupt"), ("sorry", "to", "disturb", "you"),
     ("come", "on"), ("maybe", "try"), ("again",),
