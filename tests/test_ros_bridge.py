@@ -248,6 +248,8 @@ def test_a_subscriber_that_disappears_mid_mission_does_not_disturb_the_bridge():
         bridge.up()
         with RosClient() as first:
             first.publish("stuart/mission", "go to the bathroom")
+            # its mission under way: its intent out (before the next client listens) and the robot moving
+            assert first.wait_for(lambda m: m.get("topic") == "/llm/task_intent", timeout=30) is not None
             assert first.wait_for(lambda m: m.get("topic") == "/robot_pose", timeout=30) is not None
             first.proc.kill()  # gone without a goodbye while poses and events stream to it
             first.proc.wait()
@@ -258,7 +260,8 @@ def test_a_subscriber_that_disappears_mid_mission_does_not_disturb_the_bridge():
         assert bridge.stop() == 0
 
     assert said is not None
-    assert [(i["action"], i["target"]) for i in intents(second)] == [("navigate_to_marker", "kitchen")]
+    heard = [(i["action"], i["target"]) for i in intents(second)]
+    assert heard == [("navigate_to_marker", "kitchen")], heard
 
 
 def test_a_bad_namespace_domain_or_options_file_is_one_clear_line_and_nothing_starts(tmp_path):
