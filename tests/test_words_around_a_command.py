@@ -60,6 +60,9 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart pick up the cup for us grown ups", [("pick_up", "cup")]),
     ("Stuart, you know, just turn around.", [("turn_around", "")]),
     ("stuart turn round and face the other way", [("turn_around", "")]),
+    ("stuart ok so first go to the bathroom and then wave", [("navigate_to_marker", "bathroom"), ("gesture", "wave")]),
+    ("stuart go to the workbench you'll find the screwdriver there", [("navigate_to_marker", "workbench")]),
+    ("Stuart, pick up the apple, you've earned it.", [("pick_up", "apple")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)

@@ -163,6 +163,7 @@ def _thanks_ahead(s: ParseState, i: int) -> int:
 _BEFORE_A_VERB_ONLY = frozenset({("next",), ("like",), ("help", "me"), ("help", "us"), ("please", "to"), ("mind",),
                                  ("you", "mind"), ("awfully",), ("terribly",), ("ever", "so"), ("again",),
                                  ("maybe", "try"), ("come", "on"), ("you", "know", "what"), ("you", "know"),
+                                 ("first",), ("firstly",),  # ("so first go to the kitchen": after an opener)
                                  *((subject, verb) for subject in ("i", "we")
                                    for verb in ("guess", "suppose", "reckon"))})
 

@@ -66,6 +66,7 @@ from .lexicon import (
     STOP_PHRASES_BY_FIRST,
     SUBJECT_AND_BE,
     SUBJECT_AND_IS,
+    SUBJECT_AND_MODAL,
     SUBORDINATORS,
     THANKS_AHEAD_FEELINGS,
     TIME_OPENERS,
@@ -498,7 +499,8 @@ class _CommandReader:
         statement of their own: they open as one (a subject: "the kids", "we", "Jess is") and
         have a verb before the next connector ("the kids want ...", "we are late")."""
         s = self.s
-        if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS) and s.at(j + 1) not in BOUNDARY or (
+        if (j in self.tokens.contracted or self.toks[j] in SUBJECT_AND_IS or self.toks[j] in SUBJECT_AND_MODAL) and (
+                s.at(j + 1) not in BOUNDARY) or (
                 self.toks[j] in DETERMINERS and j + 1 in self.tokens.contracted) or (
                 self.toks[j] in SUBJECT_AND_BE and j + 1 in self.tokens.gerunds):
             return True  # "find the apple it's my lunch" ("its", as recognisers write it), "your battery's low"

@@ -70,7 +70,13 @@ NP_BLOCK = frozenset({"sleep", "bed", "hell", "heaven", "pieces", "waste", "war"
                       "step", "steps", "turn", "turns", "care", "part", "place", "note", "notice", "time", "pace",
                       "lead", "lesson", "chill pill", "joke", "pill", "hike", "stroll", "spin"})
 
-NP_STOP = BOUNDARY | frozenset({
+# a subject and "have", "had", "would" or "will" as one word, as recognisers write them ("you've",
+# "you'll"): never inside a name; after a command, the start of a remark ("go to the charging dock
+# you've earned a rest", "go to the kitchen you'll find the cup there")
+SUBJECT_AND_MODAL = frozenset({"youve", "weve", "ive", "theyve", "youd", "wed", "theyd", "youll", "theyll", "itll",
+                               "thatll", "thatd", "itd"})
+
+NP_STOP = SUBJECT_AND_MODAL | BOUNDARY | frozenset({
     "to", "from", "on", "in", "at", "into", "onto", "inside", "near", "next", "by", "with", "for", "off", "of",
     "please", "now", "quickly", "quick", "slowly", "carefully", "immediately", "again", "too", "first", "thanks",
     "thank", "up", "down", "over", "there", "here", "behind", "under", "beside", "between", "below", "above", "around",
@@ -220,7 +226,7 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
     ("like",), ("now", "then"), ("alright", "then"), ("ok", "then"), ("good",), ("great",), ("thanks",),
     ("thank", "you"), ("cool",), ("sure",), ("fine",), ("right",), ("and", "now"), ("next",),
     ("instead",), ("instead", "of", "that"), ("rather",), ("off", "you"), ("help", "me"), ("help", "us"),
-    ("please", "to"), ("mind",), ("you", "mind"), ("you", "know", "what"), ("you", "know"),
+    ("please", "to"), ("mind",), ("you", "mind"), ("you", "know", "what"), ("you", "know"), ("first",), ("firstly",),
     ("if", "you", "dont", "mind"), ("if", "you", "do", "not", "mind"), ("if", "you", "please"),
     ("sorry", "to", "bother", "you"), ("sorry", "to", "interrupt"), ("sorry", "to", "disturb", "you"),
     ("come", "on"), ("maybe", "try"), ("again",),
