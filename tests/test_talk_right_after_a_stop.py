@@ -53,3 +53,13 @@ def test_a_stop_asked_for_inside_talk_with_no_pause_wins(asked: str) -> None:
 
 def test_asking_why_it_would_stop_is_no_stop() -> None:
     assert actions("stuart why would you stop at the kitchen") == []
+
+
+@pytest.mark.parametrize("stop", ["no stop", "stop", "wait", "hold on", "freeze"])
+@pytest.mark.parametrize("negated", ["don't pick up that cup", "do not go to the kitchen", "don't wave at them"])
+def test_a_command_negated_right_after_a_stop_is_not_done(stop: str, negated: str) -> None:
+    assert actions(f"hey stuart {stop} {negated} it's not ready yet") == ["stop"]
+
+
+def test_a_stop_said_with_now_please_before_a_statement_wins() -> None:
+    assert actions("stuart you're doing great with the tour but stop now please the floor is wet") == ["stop"]

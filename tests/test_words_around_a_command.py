@@ -63,6 +63,7 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart ok so first go to the bathroom and then wave", [("navigate_to_marker", "bathroom"), ("gesture", "wave")]),
     ("stuart go to the workbench you'll find the screwdriver there", [("navigate_to_marker", "workbench")]),
     ("Stuart, pick up the apple, you've earned it.", [("pick_up", "apple")]),
+    ("stuart yaw right forty five degrees", [("turn_by_angle", "")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)

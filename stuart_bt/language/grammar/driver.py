@@ -504,14 +504,7 @@ class _CommandReader:
                 self.toks[j] in DETERMINERS and j + 1 in self.tokens.contracted) or (
                 self.toks[j] in SUBJECT_AND_BE and j + 1 in self.tokens.gerunds):
             return True  # "find the apple it's my lunch" ("its", as recognisers write it), "your battery's low"
-        if self.toks[j] in _NO_SUBJECT or not opens_conversation(s, j):
-            return False
-        k = j + 1
-        while k < s.n and self.toks[k] not in BOUNDARY:
-            if self.toks[k] in AUX or self.toks[k] in MODALS or self.toks[k] in _REMARK_VERBS:
-                return True
-            k += 1
-        return False
+        return self.toks[j] not in _NO_SUBJECT and _statement_after(s, j, _REMARK_VERBS)
 
     def _opens_sentence(self, i: int) -> bool:
         """Whether ``i`` starts a sentence: the start, after . ! ? ;, or after a comma before any command."""
@@ -646,9 +639,26 @@ def _stop_ends(s: ParseState, j: int) -> bool:
     stop for a second", "..., but freeze a moment", "..., just halt right there for a second"):
     then it is a stop, not a word in the talk."""
     j = _after_pause_spans(s, j)
+    while s.at(j) in ("now", "please"):  # ("... but stop now please the floor is wet")
+        j += 1
     # "... just stop for a second while I fix your arm", "... but first stop because ...", "... stop for a second so
     # the group can ...", "... but stop you're way too close to the table"
-    return s.at(j) in CONDITIONS or s.at(j) in _REASONS or s.at(j) in _NEW_SUBJECT or may_end(s, j)
+    return (s.at(j) in CONDITIONS or s.at(j) in _REASONS or s.at(j) in _NEW_SUBJECT or may_end(s, j)
+            or _statement_after(s, j))
+
+
+def _statement_after(s: ParseState, j: int, verbs: frozenset[str] = COPULA) -> bool:
+    """Whether a statement of its own starts at ``j`` (after a stop's words: "... but stop now
+    please the floor is wet"; after a command: "... the kids want to see it"): it opens as one,
+    and an auxiliary, a modal or one of ``verbs`` comes before the next connector."""
+    if not (j < s.n and opens_conversation(s, j)):
+        return False
+    k = j + 1
+    while k < s.n and s.toks[k] not in BOUNDARY:
+        if s.toks[k] in AUX or s.toks[k] in MODALS or s.toks[k] in verbs:
+            return True
+        k += 1
+    return False
 
 
 def _after_pause_spans(s: ParseState, j: int) -> int:

@@ -375,7 +375,8 @@ MOTION_VERBS = frozenset({"go", "move", "walk", "head", "drive", "travel", "proc
                           "edge",
                           "budge", "crawl", "glide", "push", "ease", "wheel", "pop", "nip"})
 
-TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "face", "revolve", "veer", "swing"})
+TURN_VERBS = frozenset({"turn", "rotate", "spin", "pivot", "swivel", "twist", "face", "revolve", "veer", "swing",
+                        "yaw"})
 
 PICK_VERBS = frozenset({"pick", "grab", "grasp", "take", "fetch", "collect", "lift", "retrieve", "bring",
                         "carry", "get", "hand", "pass", "give", "snatch", "obtain", "gather", "seize", "acquire",

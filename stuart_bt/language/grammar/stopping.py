@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from ..intents import NAVIGATE, STOP
 from .lexicon import (
+    ALL_VERBS,
     BOUNDARY,
     POLITE_BY_FIRST,
     STOP_VERB_NEEDS,
@@ -42,6 +43,9 @@ def read_stop(s: ParseState, i: int) -> Result:
     while j < n and toks[j] not in BOUNDARY and not says_why_at(s, j):
         if j > i + 1 and toks[j] in STRONG_VERBS and toks[j] not in ("move", "go", "stop", "turn", "walk"):
             break
+        if (toks[j] == "dont" and s.at(j + 1) in ALL_VERBS) or (
+                toks[j] == "do" and s.at(j + 1) == "not" and s.at(j + 2) in ALL_VERBS):
+            break  # "no stop don't pick up that cup": a negated command of its own, never the pick
         j += 1
     return [(STOP, "", 0.0, 0.0, 0.0)], j
 
