@@ -64,6 +64,14 @@ def test_a_name_that_is_part_of_a_place_stays():
     ("stuart go to the workbench you'll find the screwdriver there", [("navigate_to_marker", "workbench")]),
     ("Stuart, pick up the apple, you've earned it.", [("pick_up", "apple")]),
     ("stuart yaw right forty five degrees", [("turn_by_angle", "")]),
+    ("stuart once you reach the reading room put your hands up",
+     [("navigate_to_marker", "reading room"), ("gesture", "hands up")]),
+    ("stuart first find the cup second pick it up third go to the kitchen",
+     [("find", "cup"), ("pick_up", "cup"), ("navigate_to_marker", "kitchen")]),
+    ("stuart ok buddy turn around", [("turn_around", "")]),
+    ("Stuart, bring me back over to the entrance.", [("navigate_to_marker", "entrance")]),
+    ("stuart stay by the workbench for now", [("stop", "")]),
+    ("stuart wait at the workbench", [("navigate_to_marker", "workbench"), ("stop", "")]),
 ])
 def test_fillers_and_remarks_with_no_pause_are_never_targets(text, want):
     result = Parser().parse(text)
@@ -115,6 +123,7 @@ def test_turning_around_twice_is_still_two_turns():
     "Stuart, you walk to the kitchen quicker than I do.",
     "stuart fetch me the book and a sandwich ha ha only kidding",
     "Stuart, go to the entrance and the car park, just joking",
+    "stuart turn around and wave at the bathroom haha not really",
 ])
 def test_comparisons_and_jokes_taken_back_after_talk_move_nothing(text):
     assert Parser().parse(text).intents == [], text

@@ -13,6 +13,7 @@ from .amounts import MAX_BARE_SIDESTEP_M, NUMBER_STARTS, read_motion_terms, read
 from .finding import read_find, read_find_noun
 from .gestures import read_gesture, skip_gesture_tail
 from .lexicon import (
+    ADDRESS_TERMS,
     ALL_VERBS,
     AUX,
     BACKWARD,
@@ -44,6 +45,7 @@ from .lexicon import (
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
     SPEAKER_OPENERS_BY_FIRST,
+    STEP_ORDINALS,
     STOP_PHRASES_BY_FIRST,
     STOP_VERBS,
     SUBJECTS,
@@ -120,6 +122,9 @@ def _polite(s: ParseState, i: int) -> int:
             if t in MODALS and i + 1 < n and toks[i + 1] == "you":
                 i += 2
                 continue
+            if i > 0 and (called := called_at(s, i)) and s.at(i + called) in ALL_VERBS:
+                i += called  # "alright buddy head over to the charging dock": the robot called after an opener
+                continue
             if t == "you" and i + 1 < n and toks[i + 1] in ALL_VERBS and toks[i + 1] not in ("look", "do", "stand",
                                                                                              "back", "hold") and (
                     not compares(s, i)):  # ("you pick up bottles faster than our interns": a comparison)
@@ -139,6 +144,19 @@ def _polite(s: ParseState, i: int) -> int:
         if (p[0] == "if" or p in _OPENERS_BEFORE_A_PAUSE) and s.at(i) == ",":
             i += 1  # "if you don't mind, turn around", "come on, go to the bathroom"
     return i
+
+
+def called_at(s: ParseState, i: int) -> int:
+    """How many words at ``i`` call the robot a name before a command with no pause ("mate pick
+    up the apple", "my friend, wave"): one or two, else 0."""
+    k = i + 1 if s.toks[i] in _FOND and s.at(i + 1) in _CALLED else i
+    return k + 1 - i if s.toks[k] in _CALLED and (s.at(k + 1) in ALL_VERBS or s.at(k + 1) == ",") else 0
+
+
+# terms of address for the robot alone (not "guys", "everyone": those call others) and the
+# words said before one ("my friend", "old pal")
+_CALLED = ADDRESS_TERMS - {"everyone", "everybody", "guys", "folks", "lads", "kid", "son"}
+_FOND = frozenset({"my", "old", "little", "big", "good", "dear"})
 
 
 def _thanks_ahead(s: ParseState, i: int) -> int:
@@ -567,6 +585,6 @@ def read_connector(s: ParseState, i: int) -> tuple[str, int] | None:
     if t not in CONNECTORS_BY_FIRST:
         return None
     c = s.phrase_at(i, CONNECTORS_BY_FIRST)
-    if c is None:
-        return None
+    if c is None or (t in STEP_ORDINALS and s.at(i + 1) not in ALL_VERBS):
+        return None  # ("the second station": no step numbered)
     return ("reorder" if c in REORDER else "next"), i + len(c)

@@ -38,10 +38,9 @@ from typing import NamedTuple
 
 from ..intents import FIND, GESTURE, MOVE, NAVIGATE, PICK, STOP, TURN, TURN_AROUND, TaskIntent
 from ..numbers import word_value
-from .clauses import FAMILY_READERS, opens_conversation, read_clause, read_connector, read_topic
+from .clauses import FAMILY_READERS, called_at, opens_conversation, read_clause, read_connector, read_topic
 from .forms import CHECK, SOFTENED, question_tags, retraction_at, takes_back_at
 from .lexicon import (
-    ADDRESS_TERMS,
     ALL_VERBS,
     AUX,
     BODY_PARTS,
@@ -63,6 +62,7 @@ from .lexicon import (
     RETRACTIONS_BY_FIRST,
     ROTATIONS,
     SIGN_OFFS_BY_FIRST,
+    STEP_ORDINALS,
     STOP_PHRASES_BY_FIRST,
     SUBJECT_AND_BE,
     SUBJECT_AND_IS,
@@ -223,7 +223,9 @@ class _CommandReader:
         con = read_connector(s, self.i)
         if con is None:
             return False
-        kind, self.i = con
+        kind, end = con
+        self._mark(self.i, end if toks[self.i] in STEP_ORDINALS else self.i, USED)  # ("second pick it up")
+        self.i = end
         if kind == "or":  # "the kitchen or the bathroom": a choice is not a plan
             offered = self.i
             while self.i < s.n and toks[self.i] not in HARD_STOPS:
@@ -240,7 +242,7 @@ class _CommandReader:
         if self.dead:
             return False
         s, i = self.s, self.i
-        called = 1 if self.toks[i] in s.vocatives else _called_at(s, i) if self._opens_sentence(i) else 0
+        called = 1 if self.toks[i] in s.vocatives else called_at(s, i) if self._opens_sentence(i) else 0
         self._mark(i, i + called, USED)
         self.i += called
         return called > 0
@@ -584,19 +586,6 @@ class _CommandReader:
 # "a bottle of water", "the kitchen by the door"), when they follow a target
 QUALIFIERS = frozenset({"on", "in", "at", "of", "from", "near", "by", "with", "under", "beside", "behind", "next",
                         "inside", "over", "underneath", "above", "below", "opposite"})
-
-def _called_at(s: ParseState, i: int) -> int:
-    """How many words at ``i`` call the robot a name before a command with no pause ("mate pick
-    up the apple", "my friend, wave"): one or two, else 0."""
-    k = i + 1 if s.toks[i] in _FOND and s.at(i + 1) in _CALLED else i
-    return k + 1 - i if s.toks[k] in _CALLED and (s.at(k + 1) in ALL_VERBS or s.at(k + 1) == ",") else 0
-
-
-# terms of address for the robot alone (not "guys", "everyone": those call others) and the
-# words said before one ("my friend", "old pal")
-_CALLED = ADDRESS_TERMS - {"everyone", "everybody", "guys", "folks", "lads", "kid", "son"}
-_FOND = frozenset({"my", "old", "little", "big", "good", "dear"})
-
 
 def _stop_said_at(s: ParseState, i: int) -> bool:
     """Whether a stop is said to the robot at ``i`` in the middle of talk: a stop whose clause

@@ -251,11 +251,15 @@ POLITE: tuple[tuple[str, ...], ...] = tuple(sorted({
 
 POLITE_BY_FIRST = by_first(POLITE)
 
+# ordinals that number the steps of a plan before a verb ("first find the apple second pick it up")
+STEP_ORDINALS = frozenset({"second", "third", "fourth", "fifth"})
+
 CONNECTORS: tuple[tuple[str, ...], ...] = tuple(sorted({
     (",",), ("&",), ("and",), ("then",), ("plus",), ("and", "then"), ("and", "after", "that"), ("and", "afterwards"),
     ("and", "finally"), ("and", "also"), ("and", "next"), ("and", "lastly"), ("after", "that"), ("after", "this"),
     ("after", "which"), ("afterwards",), ("afterward",), ("finally",), ("lastly",), ("first",), ("firstly",),
-    ("first", "of", "all"), ("secondly",), ("thirdly",), ("next",), ("then", "after", "that"), ("once", "done"),
+    ("first", "of", "all"), ("secondly",), ("thirdly",), *((o,) for o in STEP_ORDINALS), ("next",),
+    ("then", "after", "that"), ("once", "done"),
     ("when", "done"), ("once", "there"), ("when", "there"), ("once", "you", "are", "there"),
     ("once", "youre", "there"), ("when", "you", "get", "there"), ("when", "you", "are", "there"),
     ("when", "youre", "there"),
@@ -559,7 +563,7 @@ GET_IDIOM_NEXT = frozenset({"going", "go", "moving", "move", "up", "down", "out"
 RETRACTIONS: tuple[tuple[str, ...], ...] = (
     ("just", "kidding"), ("only", "kidding"), ("kidding",), ("im", "kidding"), ("just", "joking"), ("only", "joking"),
     ("joking",), ("im", "joking"), ("jk",), ("just", "messing"), ("only", "messing"), ("messing", "with", "you"),
-    ("just", "teasing"), ("only", "teasing"), ("pulling", "your", "leg"),
+    ("just", "teasing"), ("only", "teasing"), ("pulling", "your", "leg"), ("not", "really"),
     # "i am joking", "I'm only kidding", "I was just teasing" ("im messing" is below, "im teasing" is none)
     *((*subject, *adverb, word) for subject in (("im",), ("i", "am"), ("i", "was"))
       for adverb in ((), ("only",), ("just",)) for word in ("joking", "kidding", "messing", "teasing")

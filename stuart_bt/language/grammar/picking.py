@@ -120,7 +120,7 @@ _PICK_OPENERS: dict[str, Callable[[ParseState, int], int | Found]] = {
 def _past_recipient(s: ParseState, verb: str, i: int, j: int) -> int | Found:
     """Past who the object is for ("bring me the cup", "bring to me the bottle"); "bring me to
     the kitchen" is being guided there."""
-    if verb in ("bring", "carry") and s.at(j) in ("me", "us", "them", "him", "her") and s.at(j + 1) in TO_WORDS:
+    if verb in ("bring", "carry") and s.at(j) in ("me", "us", "them", "him", "her") and _to_after_ways(s, j + 1):
         return Found(read_guide(s, i))  # "bring me to the kitchen"
     if verb in ("bring", "get", "fetch", "grab", "hand", "pass", "give", "find", "buy", "pour") and s.at(j) in (
             "me", "us", "him", "her") and j + 1 < s.n and s.toks[j + 1] not in BOUNDARY and s.toks[j + 1] not in (
@@ -165,3 +165,11 @@ def _pick_destination(s: ParseState, verb: str, k: int, e: int) -> tuple[Spec | 
         if place is not None:
             return (NAVIGATE, place, 0.0, 0.0, 0.0), e2
     return None, e2
+
+
+def _to_after_ways(s: ParseState, k: int) -> bool:
+    """Whether "to" comes at ``k``, perhaps after "over" or "back" ("bring us back over to the
+    entrance"): someone brought to a place, so led there."""
+    while s.at(k) in ("over", "back"):
+        k += 1
+    return s.at(k) in TO_WORDS

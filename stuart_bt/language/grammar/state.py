@@ -17,6 +17,7 @@ from .lexicon import (
     PLAIN_STOPS,
     RETRACTIONS_BY_FIRST,
     SIGN_OFFS_BY_FIRST,
+    STEP_ORDINALS,
     STRONG_VERBS,
     SUBJECT_AND_BE,
     TRAILING,
@@ -159,8 +160,9 @@ def skip_rest(s: ParseState, j: int) -> int:
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" and (
                     toks[j - 1] not in SUBJECT_AND_BE) or starts_a_stop(s, j):
                 break  # (not "... we're heading home": a statement, no command)
-            if verb_and_it(s, j) or said_instead_at(s, j):
-                break  # "pick up the book take it to ...": the next command; "... actually the book": a correction
+            if verb_and_it(s, j) or said_instead_at(s, j) or (t in STEP_ORDINALS and s.at(j + 1) in ALL_VERBS):
+                break  # "pick up the book take it to ...": the next command; "... actually the book": a correction;
+                # "... second pick it up": the next step, numbered
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
                 break  # "... the corner do a high five", "... give everyone a wave": the next command
             if t in SIGN_OFFS_BY_FIRST and (off := s.phrase_at(j, SIGN_OFFS_BY_FIRST)) and may_end(s, j + len(off)):

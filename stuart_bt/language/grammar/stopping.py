@@ -32,9 +32,10 @@ def read_stop(s: ParseState, i: int) -> Result:
         return None  # "stand in line", "never again", "cut the cake": not a stop
     if verb in ("stop", "halt") and nxt in ("me", "us", "him", "her", "them", "everyone", "everybody", "people"):
         return None  # "stop me if you've heard this one": someone else is stopped
-    if verb in ("wait", "stay", "stand") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
+    if verb in ("wait", "stand") and nxt in ("at", "by", "in", "near", "inside", "beside") and s.at(
             j + 1) in ("the", "your", "my", "our", "station"):
-        words, e = read_noun_phrase(s, j + 1)  # "wait at the entrance": go there, then stay
+        words, e = read_noun_phrase(s, j + 1)  # "wait at the entrance": go there, then stay ("stay by the
+        # charging dock": stay where it is, by the dock)
         place = read_place(s, words)
         if place is not None and words[-1] not in SURFACES:
             return [(NAVIGATE, place, 0.0, 0.0, 0.0), (STOP, "", 0.0, 0.0, 0.0)], skip_rest(s, e)
