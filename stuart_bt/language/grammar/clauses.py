@@ -65,7 +65,7 @@ from .light_verbs import read_do
 from .motion import VISIT_VERBS, read_guide, read_motion, read_turn, read_visit_by
 from .nouns import numbered_place, read_noun_phrase, read_object, read_place
 from .picking import read_pick
-from .state import ParseState, Reader, Result, may_end
+from .state import ParseState, Reader, Result, may_end, numbers_a_step
 from .stopping import read_stop
 
 
@@ -137,13 +137,18 @@ def _polite(s: ParseState, i: int) -> int:
         if p in (("start",), ("begin",), ("keep",)) and not (i + 1 < n and toks[i + 1] in ALL_VERBS):
             break
         after = i + len(p) + (1 if p in _OPENERS_BEFORE_A_PAUSE and s.at(i + len(p)) == "," else 0)
-        if p in _BEFORE_A_VERB_ONLY and s.at(after + (s.at(after) == "just")) not in ALL_VERBS and not (
+        if p in _BEFORE_A_VERB_ONLY and not _verb_at(s, after) and not (
                 p == ("like",) and s.at(i + 1) in MODALS and s.at(i + 2) == "you"):
             break  # "like" is a filler only before a verb ("could you like go there") or a request ("like could you")
         i += len(p)
         if (p[0] == "if" or p in _OPENERS_BEFORE_A_PAUSE) and s.at(i) == ",":
             i += 1  # "if you don't mind, turn around", "come on, go to the bathroom"
     return i
+
+
+def _verb_at(s: ParseState, k: int) -> bool:
+    """Whether a verb is said at ``k``, perhaps after "just" ("you know, just go ...")."""
+    return s.at(k + (s.at(k) == "just")) in ALL_VERBS
 
 
 def called_at(s: ParseState, i: int) -> int:
@@ -297,8 +302,7 @@ def _asks_a_wish(s: ParseState, i: int) -> bool:
         return False
     polite = s.phrase_at(i, POLITE_BY_FIRST) if s.toks[i] in POLITE_BY_FIRST else None
     if polite == wish and polite in _BEFORE_A_VERB_ONLY:  # "you know, just go to the kitchen": a filler
-        after = i + len(polite) + (s.at(i + len(polite)) == ",")
-        return s.at(after + (s.at(after) == "just")) not in ALL_VERBS
+        return not _verb_at(s, i + len(polite) + (s.at(i + len(polite)) == ","))
     return polite is None or len(polite) <= len(wish)
 
 
@@ -585,6 +589,6 @@ def read_connector(s: ParseState, i: int) -> tuple[str, int] | None:
     if t not in CONNECTORS_BY_FIRST:
         return None
     c = s.phrase_at(i, CONNECTORS_BY_FIRST)
-    if c is None or (t in STEP_ORDINALS and s.at(i + 1) not in ALL_VERBS):
+    if c is None or (t in STEP_ORDINALS and not numbers_a_step(s, i)):
         return None  # ("the second station": no step numbered)
     return ("reorder" if c in REORDER else "next"), i + len(c)

@@ -207,11 +207,7 @@ class _CommandReader:
         taken_back = retraction_at(s, self.i) if t in RETRACTIONS_BY_FIRST and (
             self.out or self.held or self.taken_back) and not self.dead else 0
         if taken_back:  # "go to the kitchen, just kidding": nothing asked before it stands
-            self._forget_all()
-            self.taken_back = True
-            self._mark(self.i, self.i + taken_back, USED)
-            self.i += taken_back
-            return True
+            return self._take_back(taken_back)
         c = s.phrase_at(self.i, CORRECTIONS_BY_FIRST) if self.out and not self.dead else None
         if c:
             self.correct_at = len(self.out) - _last_clause_len(self.out)  # "go to the kitchen, no, the bathroom"
@@ -294,6 +290,14 @@ class _CommandReader:
             k += 1
         return i if k > i + 1 else 0
 
+    def _take_back(self, length: int) -> bool:
+        """The retraction of ``length`` words at ``i`` takes back everything asked before it: consumed."""
+        self._forget_all()
+        self.taken_back = True
+        self._mark(self.i, self.i + length, USED)
+        self.i += length
+        return True
+
     def _forget_all(self) -> None:
         self.s.last_action = ""  # nothing for an ellipsis to continue ("..., I'm joking, obviously")
         self.out.clear()
@@ -313,11 +317,7 @@ class _CommandReader:
             return False
         taken_back = retraction_at(s, i) if t in RETRACTIONS_BY_FIRST and (self.out or self.held) else 0
         if taken_back and may_end(s, i + taken_back):  # "fetch me a cup and a biscuit ha ha only joking":
-            self._forget_all()  # taken back at the end of the talk that followed the command
-            self.taken_back = True
-            self._mark(i, i + taken_back, USED)
-            self.i += taken_back
-            return True
+            return self._take_back(taken_back)  # taken back at the end of the talk that followed the command
         self.marks[i] = TALK
         self.i += 1
         return True
@@ -689,8 +689,10 @@ _NO_ORDER_BEFORE = frozenset({
     "bus", "pit", "last", "next", "final", "first", "full", "quick", "one", "every", "each", "deep", "ever", "always",
     "often", "sometimes", "usually"})
 
+# the people a command is done for, as said at its end ("... for us old timers")
+_WHOM = frozenset({"me", "us", "them", "him", "her"})
 # pronouns that, after a preposition, are no subject of the stop after them ("... on it stop")
-_OBJECT_FORMS = frozenset({"it", "me", "us", "them", "him", "her"})
+_OBJECT_FORMS = _WHOM | {"it"}
 _PREPOSITIONS = frozenset({"on", "in", "at", "with", "to", "for", "from", "into", "onto", "near", "behind", "by",
                            "under", "over", "past", "towards", "toward", "about", "around", "beside", "of"})
 
@@ -818,9 +820,6 @@ def _only_who(words: list[str]) -> bool:
     """Whether ``words`` after "for us" can only say who "us" are: no verb, no time, no direction."""
     return all(w not in ALL_VERBS and w not in TIMES and w not in DIRECTIONS for w in words)
 
-
-# the people a command is done for, as said at its end ("... for us old timers")
-_WHOM = frozenset({"me", "us", "them", "him", "her"})
 
 
 def _names_a_way(words: Iterable[str]) -> bool:

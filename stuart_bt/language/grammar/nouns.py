@@ -20,7 +20,6 @@ from .lexicon import (
     OBJECT_PRONOUNS,
     PRONOUNS,
     RETRACTIONS_BY_FIRST,
-    STEP_ORDINALS,
     STRONG_VERBS,
     SUBJECT_AND_IS,
     SURFACES,
@@ -29,7 +28,7 @@ from .lexicon import (
     VERB_PARTICLES,
     WH,
 )
-from .state import ParseState, Result, said_instead_at, starts_a_stop, verb_and_it
+from .state import ParseState, Result, numbers_a_step, said_instead_at, starts_a_stop, verb_and_it
 
 
 def read_noun_phrase(s: ParseState, i: int) -> tuple[list[str], int]:
@@ -85,7 +84,7 @@ def _something_else_at(s: ParseState, i: int, j: int) -> bool:
         return True  # "pick up the apple hmm actually the book"
     if t in GESTURES_BY_FIRST and t in ALL_VERBS and len(s.phrase_at(j, GESTURES_BY_FIRST) or ()) > 1 or (
             t in ("raise", "put", "lift") and (s.at(j + 2) in BODY or s.at(j + 3) in BODY)) or (
-            t in STEP_ORDINALS and s.at(j + 1) in ALL_VERBS):  # ("find the apple second pick it up")
+            numbers_a_step(s, j)):  # ("find the apple second pick it up")
         return True  # "when you get to the humanoid corner put your hands up": a gesture, said with no pause
     if t in SUBJECT_AND_IS and s.at(j + 1) not in BOUNDARY or t in DETERMINERS and j + 1 in s.contracted:
         return True  # "find the apple its my lunch", "go to the dock your battery's low": a statement follows

@@ -137,6 +137,12 @@ def verb_and_it(s: ParseState, j: int) -> bool:
             and s.toks[j - 1] not in DETERMINERS and s.toks[j - 1] != "to")
 
 
+def numbers_a_step(s: ParseState, j: int) -> bool:
+    """Whether an ordinal at ``j`` numbers the next step of a plan ("... second pick it up"): one
+    before a verb ("for a second", "the second station" are none)."""
+    return s.toks[j] in STEP_ORDINALS and s.at(j + 1) in ALL_VERBS
+
+
 def skip_rest(s: ParseState, j: int) -> int:
     """After a clause: skip words the grammar does not use ("at the door", "quickly") up to the
     next connector, a purpose "to <verb>", or a new verb that starts a command."""
@@ -160,7 +166,7 @@ def skip_rest(s: ParseState, j: int) -> int:
             if t in STRONG_VERBS and toks[j - 1] not in DETERMINERS and toks[j - 1] != "to" and (
                     toks[j - 1] not in SUBJECT_AND_BE) or starts_a_stop(s, j):
                 break  # (not "... we're heading home": a statement, no command)
-            if verb_and_it(s, j) or said_instead_at(s, j) or (t in STEP_ORDINALS and s.at(j + 1) in ALL_VERBS):
+            if verb_and_it(s, j) or said_instead_at(s, j) or numbers_a_step(s, j):
                 break  # "pick up the book take it to ...": the next command; "... actually the book": a correction;
                 # "... second pick it up": the next step, numbered
             if t in ("do", "give") and (s.at(j + 1) in DETERMINERS or s.at(j + 1) in _RECEIVERS):
