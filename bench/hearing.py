@@ -149,17 +149,30 @@ def _hear(recogniser: Any, clip: Any, vocabulary: Any, parser: Any, resolver: An
     """(intents, latency s, real-time factor) of one clip."""
     from stuart_bt.hearing.pipeline import is_speech, transcribe
     from stuart_bt.language.readings import choose_reading, rival_reading
-    from stuart_bt.mission.commands import MIN_CONFIDENCE
 
     heard = transcribe(recogniser, clip, vocabulary)
     t = heard.transcript
     readings = t.readings() if is_speech(t) else []
     chosen = choose_reading(readings, parser, resolver) if readings else 0
     text = readings[chosen][0] if readings else ""
-    asked = bool(text) and (bool(parser.parse(text).doubt) or t.confidence < MIN_CONFIDENCE
-                            or rival_reading(readings, chosen, parser, resolver) is not None)
-    meant = [] if asked else _meaning(parser, text, resolver)  # in doubt the robot asks: nothing done
-    return meant, heard.latency_s, t.seconds / max(t.audio_s, 1e-6)
+    rival = rival_reading(readings, chosen, parser, resolver) if readings else None
+    return _done(parser, resolver, text, t.confidence, rival is not None), heard.latency_s, \
+        t.seconds / max(t.audio_s, 1e-6)
+
+
+def _done(parser: Any, resolver: Any, text: str, confidence: float, rival: bool) -> list:
+    """What the robot does on hearing ``text``, decided as the mission executor decides it
+    (``interpret`` and ``hearing_doubts``): in doubt (the words, a low confidence, a rival reading)
+    it asks, so its tasks count as nothing done, but a stop it heard stops it all the same."""
+    from stuart_bt.mission.commands import STOP, hearing_doubts, interpret
+
+    command = interpret(parser, text)
+    doubt = bool(command.parse.doubt) or bool(hearing_doubts(command, {"confidence": confidence,
+                                                                       "rival_reading": rival}))
+    meant = _meaning(parser, text, resolver)
+    if not doubt:
+        return meant
+    return meant[:1] if command.kind == STOP else []
 
 
 def _score(truth: list[list], got: list[list], is_command: list[bool]) -> tuple[float, int]:
