@@ -7,8 +7,11 @@ with a pronunciation built by :mod:`.pronounce`.
 
 Why these settings: espeak-ng audio and the silence the segmenter pads utterances with hold
 runs of digital zeros, whose log energy the front end cannot take (an alignment of the right
-words then fails outright); ``dither`` adds noise below one bit, seeded so the same sound is
-always heard the same way. ``bestpath`` off: the lattice pass took longer than the search and
+words then fails outright); ``dither`` adds noise below one bit, seeded. The front end is made
+anew for each utterance (``reinit_feat``, ~0.1 ms), so the same sound is always heard the same
+way: kept, the dither's random stream and the live cepstral mean carry over from one utterance
+to the next, and the same "Stuart, stop" at 10 dB SNR was heard as "stuart halt", then as
+"stuart stop". ``bestpath`` off: the lattice pass took longer than the search and
 gave nothing we use.
 """
 
@@ -57,6 +60,7 @@ class GrammarRecogniser:
         name, sentence = search
         if self._decoder.current_search() != name:
             self._decoder.activate_search(name)
+        self._decoder.reinit_feat()  # nothing carried over from the last utterance (module docstring)
         self._decoder.start_utt()
         self._decoder.process_raw(np.asarray(samples, dtype="<i2").tobytes(), full_utt=True)
         self._decoder.end_utt()
