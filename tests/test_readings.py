@@ -84,3 +84,22 @@ def test_a_reading_that_greets_someone_else_by_name_makes_the_robot_ask_who_was_
     assert rival_reading(unknown, 0, *lab) == 1  # a thing the robot would ask about: still, who was it said to?
     unsure = [said[0], ("hey, Stuart, pick up the book.", -0.3), ("hey sir, pick up the book.", -0.31)]
     assert rival_reading(unsure, 0, *lab) is None  # the robot's name again, and no name at all
+
+
+def test_a_reading_that_only_stops_the_robot_is_acted_on_further_behind_than_a_task(lab):
+    from stuart_bt.language.readings import STOP_MARGIN
+
+    heard = [("do it, stop.", -0.46), ("screw there, stop.", -0.57), ("Stewart, stop.", -0.64)]
+    assert choose_reading(heard, *lab) == 2  # 0.18 behind: too far for a task, near enough to stop
+    far = [heard[0], ("Stewart, stop.", -0.47 - STOP_MARGIN)]
+    assert choose_reading(far, *lab) == 0
+
+
+def test_a_stop_with_a_task_after_it_is_held_to_the_margin_of_a_task(lab):
+    heard = [("do it, stop.", -0.46), ("Stewart, stop and go to the kitchen.", -0.64)]
+    assert choose_reading(heard, *lab) == 0  # the task would move the robot: not on a reading this far behind
+
+
+def test_talk_about_stopping_is_no_stop(lab):
+    heard = [("the bus stop is outside.", -0.3), ("the bus stops outside.", -0.4), ("Stuart, the bus stop.", -0.5)]
+    assert choose_reading(heard, *lab) == 0

@@ -12,6 +12,11 @@ because it would be convenient, and talk stays talk (a non-command's other readi
 own words, rarely a clear command within the margin; the hearing benchmark counts any).
 A reading within the margin that greets someone else by name ("hey Sarah, ..." beside "hey
 Stuart, ...") is a rival too: the robot asks whether it was meant.
+
+Readings the robot does not act on for a task may still make it safer, never move it: within
+:data:`ADDRESSEE_MARGIN` of the best, one greeting someone else makes it ask, and one that only
+stops it ("Stewart, stop." behind "do it, stop." in noise) stops it. A stop is never unsafe, and a
+stop missed is the one mishearing that can hurt someone.
 """
 
 from __future__ import annotations
@@ -30,6 +35,9 @@ READING_MARGIN = 0.15  # average log probability per token a command reading may
 # ask: a recogniser primed with the robot's name ranks it first (measured, docs/hearing.md: "hey
 # Sarah, ..." trailed "hey Stuart, ..." by 0.17 in whisper's own readings)
 ADDRESSEE_MARGIN = 0.5
+# how far a reading that only stops the robot may trail the best and still be acted on: as far as one
+# that makes it ask (both only make the robot safer)
+STOP_MARGIN = ADDRESSEE_MARGIN
 
 
 def is_clear_command(text: str, parser: Parser, resolver: Resolver) -> bool:
@@ -43,7 +51,8 @@ def is_clear_command(text: str, parser: Parser, resolver: Resolver) -> bool:
 def choose_reading(readings: Sequence[tuple[str, float]], parser: Parser, resolver: Resolver,
                    margin: float = READING_MARGIN) -> int:
     """Index into ``readings`` ((text, average log probability), best first) of the one to act
-    on: the best, unless it is no clear command and a reading within ``margin`` of it is."""
+    on: the best, unless it is no clear command and a reading within ``margin`` of it is, or
+    else one within :data:`STOP_MARGIN` that only stops the robot."""
     if len(readings) < 2 or is_clear_command(readings[0][0], parser, resolver):
         return 0
     best = readings[0][1]
@@ -51,6 +60,16 @@ def choose_reading(readings: Sequence[tuple[str, float]], parser: Parser, resolv
         if score < best - margin:
             break
         if is_clear_command(text, parser, resolver):
+            return index
+    return _only_a_stop(readings, best - STOP_MARGIN, parser, resolver)
+
+
+def _only_a_stop(readings: Sequence[tuple[str, float]], least: float, parser: Parser, resolver: Resolver) -> int:
+    """Index of the first reading scored at least ``least`` that is a clear command to stop and
+    nothing else ("Stewart, stop."); 0 when none is."""
+    for index, (text, score) in enumerate(readings[1:], 1):
+        if score >= least and is_clear_command(text, parser, resolver) and all(
+                i.action == "stop" for i in parser.parse(text).intents):
             return index
     return 0
 
