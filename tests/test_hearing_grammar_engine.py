@@ -166,6 +166,16 @@ def test_every_choice_of_the_places_where_they_differ_is_a_candidate(resolver):
     assert "hey Stuart, find the screwdriver and hug." in candidates and len(candidates) == 7
 
 
+def test_neighbouring_words_that_differ_one_for_one_are_each_a_place_of_their_own(resolver):
+    vocabulary = resolver.vocabulary()
+    grammar = "hey stuart come to the workbench and then turn around"
+    candidates = splices("face, user, go to the workbench and then turn around.", grammar.split(" "), vocabulary)
+    assert "hey, Stuart, go to the workbench and then turn around." in candidates  # the wake phrase, not "come"
+    assert "hey, Stuart, come to the workbench and then turn around." in candidates and len(candidates) == 7
+    uneven = splices("hey Stuart, and enter around.", ["hey", "stuart", "and", "then", "turn", "around"], vocabulary)
+    assert uneven == ["hey Stuart, and then turn around."]  # one word for two: one place
+
+
 def test_a_place_where_the_engines_name_different_things_is_in_every_candidate(resolver):
     vocabulary = resolver.vocabulary()
     candidates = splices("case do this, find the bottle.", ["hey", "stuart", "find", "the", "book"], vocabulary)
@@ -242,3 +252,23 @@ def test_talk_stays_talk_though_the_grammar_engine_alone_hears_a_command_in_it(e
         forced += bool(command)
         assert acted == []
     assert forced >= len(TALK) // 2  # the grammar engine did make commands of talk: whisper kept them out
+
+
+@NEEDS_ESPEAK
+def test_the_grammar_engine_hears_the_same_sound_the_same_way_whatever_it_heard_before(engine, resolver, tmp_path):
+    from stuart_bt.hearing.denoise import suppress_noise
+
+    def noisy(text: str, voice: str, speed: int, seed: int):
+        clip = read_audio(speak(text, tmp_path / f"{seed}.wav", voice, speed))
+        return suppress_noise(add_noise(clip, 10.0, seed=seed))
+
+    vocabulary = resolver.vocabulary()
+    stop = noisy("Stuart, stop", "en-us+m3", 175, 64)
+    others = [noisy("Hey Stuart, turn right 90 degrees", "en-gb-x-rp", 170, 27),
+              noisy("Hey Stuart, find the cup", "en-gb-x-rp", 170, 15)]
+    heard = []
+    for _ in range(3):
+        heard.append(engine.grammar.hear(stop, vocabulary))
+        for clip in others:
+            engine.grammar.hear(clip, vocabulary)
+    assert heard[1:] == heard[:1] * 2, heard  # this sound was "stuart halt", then "stuart stop", before

@@ -138,6 +138,7 @@ NOT_TO_THE_ROBOT = [
     ("In case you go to the kitchen, take the cup", "en-gb+f3", 160),
     ("Just to be sure, the entrance is closed", "en-us+f2", 150),
     ("Based on the map, the kitchen is near", "en-gb-x-rp", 160),
+    ("Hey Stan, go to the station 3", "en-us+f2", 160),  # "face 10, ..." to whisper, "hey stuart" to the grammar
 ]
 
 
@@ -172,3 +173,30 @@ def test_a_name_written_as_someone_elses_is_told_from_the_robots_by_its_sounds(d
     from stuart_bt.hearing.wake_repair import said_to_someone_else
 
     assert said_to_someone_else(heard, "Stuart", dictionary) is someone_else
+
+
+@pytest.mark.parametrize(("heard", "names"), [
+    ("hey Stuart, go to the kitchen.", True),
+    ("Stewart, stop.", True),
+    ("steward, stop.", True),
+    ("face 10, go to the station 3.", False),
+    ("hey Steve, go to the kitchen.", False),
+    ("", False),
+])
+def test_the_robots_name_is_found_however_it_is_spelled(dictionary, heard, names):
+    from stuart_bt.hearing.wake_repair import names_the_robot
+
+    assert names_the_robot(heard, "Stuart", dictionary) is names
+
+
+def test_a_correction_that_puts_the_robots_name_back_is_held_to_the_wake_repairs_margin(recogniser):
+    from stuart_bt.hearing.second_opinion import CORRECTION_MARGIN, REPAIR_MARGIN
+    from stuart_bt.hearing.vocabulary import Vocabulary
+
+    vocabulary = Vocabulary()
+    assert REPAIR_MARGIN < CORRECTION_MARGIN
+    assert recogniser._margin("face 10, go to the station 3.", "hey Stuart, go to the station 3.",
+                              vocabulary) == REPAIR_MARGIN
+    assert recogniser._margin("hey Stuart, and enter around.", "hey Stuart, and then turn around.",
+                              vocabulary) == CORRECTION_MARGIN  # the name was heard: other words corrected
+    assert recogniser._margin("Stewart, stop.", "Stuart, stop.", vocabulary) == CORRECTION_MARGIN

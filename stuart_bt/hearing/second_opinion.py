@@ -42,7 +42,7 @@ from .pipeline import is_speech
 from .recognisers import WINDOW_S, Transcript, WhisperRecogniser
 from .sphinx import GrammarRecogniser
 from .vocabulary import Vocabulary
-from .wake_repair import said_to_someone_else, wake_repaired
+from .wake_repair import names_the_robot, said_to_someone_else, wake_repaired
 
 if TYPE_CHECKING:
     import numpy as np
@@ -93,7 +93,7 @@ class SecondOpinion:
             return replace(heard, engine=self.name, seconds=heard.seconds + self.grammar.seconds)
         score, corrected = max(zip(self._scores(heard, corrections, vocabulary), corrections, strict=True))
         seconds = heard.seconds + self.grammar.seconds + self.whisper.last_score_s
-        if own - score > CORRECTION_MARGIN:  # whisper finds it far less likely: kept, never first
+        if own - score > self._margin(heard.text, corrected, vocabulary):  # far less likely: kept, never first
             ranked = sorted([*heard.alternatives, (corrected, score)], key=lambda r: -r[1])
             return replace(heard, engine=self.name, alternatives=tuple(ranked), seconds=seconds)
         return replace(_heard_as(heard, corrected, score, seconds), engine=self.name)
@@ -130,6 +130,17 @@ class SecondOpinion:
         """:meth:`_score` of each of ``texts``, ``heard`` forced once for all."""
         *ours, theirs = self.whisper.score([*texts, heard.text], vocabulary)
         return [round(heard.avg_logprob + score - theirs, 4) for score in ours]
+
+    def _margin(self, heard: str, corrected: str, vocabulary: Vocabulary) -> float:
+        """How far behind whisper's own reading ``corrected`` may be and still be heard: a
+        correction that names the robot where whisper heard no name of it puts the wake phrase
+        back, and is held to the wake repair's :data:`REPAIR_MARGIN` ("Hey Stan, go to the
+        station 3", heard as "face 10, ...", was "hey Stuart, ..." to the grammar engine, 0.55
+        behind); any other to :data:`CORRECTION_MARGIN`."""
+        sounds = self.grammar.pronunciations
+        if names_the_robot(corrected, vocabulary.name, sounds) and not names_the_robot(heard, vocabulary.name, sounds):
+            return REPAIR_MARGIN
+        return CORRECTION_MARGIN
 
     def _matcher(self, vocabulary: Vocabulary) -> re.Pattern[str]:
         pattern = self._matchers.get(vocabulary)
@@ -177,12 +188,13 @@ def splices(heard: str, command: list[str], vocabulary: Vocabulary) -> list[str]
     charging dock and give me a hand" as "... and give me a heart and halt") and be right in one
     place only. A place where the two name different things ("bottle" and "book", "90" and
     "19") is in every choice: whisper's word there is never kept against the other's, so the
-    correction is whole there or not at all. At most :data:`MOST_PLACES` places (else the whole
-    splice alone)."""
+    correction is whole there or not at all. Words put for as many words are a place each ("face
+    user go" for "hey stuart come": the wake phrase may be the grammar engine's and the verb
+    whisper's). At most :data:`MOST_PLACES` places (else the whole splice alone)."""
     surface = heard.split()
     keys = [" ".join(spoken(s)) for s in surface]
     ours = as_digits(command)
-    opcodes = _differences(keys, ours)
+    opcodes = _word_by_word(_differences(keys, ours))
     places = [k for k, op in enumerate(opcodes) if op[0] != "equal"]
     if len(places) > MOST_PLACES:
         return [_spliced(surface, ours, opcodes, vocabulary)]
@@ -216,6 +228,18 @@ def _differences(keys: list[str], ours: list[str]) -> list[Opcode]:
     """Where whisper's words (as spoken keys) and the grammar engine's agree and differ."""
     return [(op, a0, a1, b0, b1) for op, a0, a1, b0, b1 in
             difflib.SequenceMatcher(a=keys, b=ours, autojunk=False).get_opcodes()]
+
+
+def _word_by_word(opcodes: list[Opcode]) -> list[Opcode]:
+    """``opcodes`` with each replacement of n words by n words split into n replacements of one:
+    difflib joins neighbouring differences into one, though each may be right on its own."""
+    out: list[Opcode] = []
+    for op, a0, a1, b0, b1 in opcodes:
+        if op == "replace" and a1 - a0 == b1 - b0 > 1:
+            out += [("replace", a0 + n, a0 + n + 1, b0 + n, b0 + n + 1) for n in range(a1 - a0)]
+        else:
+            out.append((op, a0, a1, b0, b1))
+    return out
 
 
 def _spliced(surface: list[str], ours: list[str], opcodes: list[Opcode], vocabulary: Vocabulary) -> str:

@@ -124,6 +124,11 @@ def said_to_someone_else(text: str, name: str, pronounce: Pronounce) -> bool:
     return keys[at] not in _OPENING_WORDS and not _sounds_like(keys[at], name, pronounce)
 
 
+def names_the_robot(text: str, name: str, pronounce: Pronounce) -> bool:
+    """Whether a word of ``text`` is the robot's ``name``, however spelled ("Stewart", "steward")."""
+    return any(_sounds_like(" ".join(spoken(word)), name, pronounce) for word in text.split() if spoken(word))
+
+
 # words a sentence often opens with before a pause, written with a capital for that alone
 _OPENING_WORDS = frozenset({"sorry", "right", "please", "yes", "yeah", "no", "well", "so", "now", "wait", "thanks",
                             "alright", "listen", "look", "actually", "oh", "um", "uh", "great", "good", "cool", "sure",
