@@ -19,7 +19,8 @@ Figures, each beside an anchor timed in the same run:
 - ``rtf``: recognition seconds per second of audio (median), anchor 1.0 (real time);
 - ``accuracy.clean`` / ``accuracy.snr10``: exact intents from audio, clean and with white noise,
   as the robot would act on them (a reading in doubt, heard with low confidence or with a rival
-  reading, is asked about, so it counts as nothing done)
+  reading, is asked about, so its tasks count as nothing done; a stop stops all the same, as in
+  the mission executor)
   at 10 dB SNR (goals 95 %, 90 %); anchor: the same recogniser **without** the vocabulary prompt,
   which is what the prompt buys;
 - ``false_commands``: intents heard in non-command audio (goal 0), anchor the same without prompt;
