@@ -18,6 +18,7 @@ from typing import Any
 
 from .. import __version__
 from ..core.errors import StuartError
+from ..core.interrupts import Interrupts
 from ..tree.layout import DIRECTIONS
 from . import gesture
 from .speed import add_speed_argument
@@ -103,7 +104,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     view = make_view(args.view, spec, session.events)
     interrupted: list[int] = []
 
-    def on_signal(signum: int, _frame: Any) -> None:
+    def on_signal(signum: int) -> None:
+        # On the interrupts' own thread (stuart_bt.core.interrupts), never inside the handler.
         # Never raise here: the daemons must still be stopped and reaped. A second signal only
         # shortens the waiting for their acknowledgements.
         if interrupted:
@@ -112,23 +114,18 @@ def cmd_run(args: argparse.Namespace) -> int:
         interrupted.append(signum)
         session.request_stop(f"interrupted ({signal.Signals(signum).name})")
 
-    previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        with session:
-            talk = _listen_to_typing(session) if args.talk else None
-            view.start()
-            try:
-                outcome = session.run()
-            finally:
-                view.stop()
-                if talk is not None:
-                    talk.close()
-    finally:
-        # Everything is stopped and reaped now. A standalone CLI keeps a handler that exits
-        # quietly (no KeyboardInterrupt traceback while it prints the summary); an in-process
-        # caller gets its own handlers back.
-        for s, handler in previous.items():
-            signal.signal(s, handler if args.restore_signals else _exit_quietly)
+    # Everything is stopped and reaped when the block ends. A standalone CLI then keeps a handler
+    # that exits quietly (no KeyboardInterrupt traceback while it prints the summary); an
+    # in-process caller gets its own handlers back.
+    with Interrupts(on_signal, then=lambda handler: handler if args.restore_signals else _exit_quietly), session:
+        talk = _listen_to_typing(session) if args.talk else None
+        view.start()
+        try:
+            outcome = session.run()
+        finally:
+            view.stop()
+            if talk is not None:
+                talk.close()
     report = session.report()
     view.summary(report)
     if args.report:

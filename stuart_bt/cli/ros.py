@@ -14,13 +14,13 @@ from __future__ import annotations
 import argparse
 import os
 import re
-import signal
 import sys
 import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..core.interrupts import Interrupts
 from .hear import add_hearing_arguments, make_listener
 from .main import _daemon_options
 from .mission import add_llm_arguments, llm_options
@@ -79,8 +79,7 @@ def cmd_ros(args: argparse.Namespace) -> int:
         return _bridge_tree(args, daemon_options, ears_options)
     options = mission_options(args, daemon_options)
     stop = threading.Event()
-    previous = _handlers(stop)
-    try:
+    with _interrupts(stop):
         try:
             robot = MissionExecutor(options)
         except (ValueError, RuntimeError) as e:  # bad options, a missing model file
@@ -102,9 +101,6 @@ def cmd_ros(args: argparse.Namespace) -> int:
                 if listener is not None:
                     listener.close()
                 bridge.close()
-    finally:
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
     print("ros bridge: stopped; every daemon stopped", flush=True)
     return EXIT_OK
 
@@ -120,29 +116,27 @@ def _bridge_tree(args: argparse.Namespace, daemon_options: dict[str, Any], ears_
         print(f"stuart-bt: {e}", file=sys.stderr)
         return EXIT_FAILED
     stop = threading.Event()
-    previous = _handlers(stop, also=lambda: robot.request_stop("interrupted"))
-    listener = None
-    try:
-        bridge = Bridge(robot, namespace=_namespace(args.namespace), status_rate=args.status_rate)
+    with _interrupts(stop, also=lambda: robot.request_stop("interrupted")):
+        listener = None
         try:
-            robot.start()
-            bridge.start()
-            listener = make_listener(args.hear, robot, args, ears_options)
-            if listener is not None:
-                listener.start()
-            _announce(bridge, robot)
-            if stop.is_set():  # a signal while the daemons came up: the run ends before its first tick
-                robot.request_stop("interrupted")
-            outcome = robot.run()
-            robot.close()  # every daemon stops while the node still reports it
+            bridge = Bridge(robot, namespace=_namespace(args.namespace), status_rate=args.status_rate)
+            try:
+                robot.start()
+                bridge.start()
+                listener = make_listener(args.hear, robot, args, ears_options)
+                if listener is not None:
+                    listener.start()
+                _announce(bridge, robot)
+                if stop.is_set():  # a signal while the daemons came up: the run ends before its first tick
+                    robot.request_stop("interrupted")
+                outcome = robot.run()
+                robot.close()  # every daemon stops while the node still reports it
+            finally:
+                if listener is not None:
+                    listener.close()
+                bridge.close()
         finally:
-            if listener is not None:
-                listener.close()
-            bridge.close()
-    finally:
-        robot.close()
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
+            robot.close()
     print(f"ros bridge: the tree ended {outcome.status}{f' ({outcome.reason})' if outcome.reason else ''}; "
           "every daemon stopped", flush=True)
     return EXIT_OK if outcome.status in ("SUCCESS", "STOPPED") else EXIT_FAILED
@@ -216,16 +210,15 @@ def _announce(bridge: Any, robot: Any) -> None:
           f"{robot.session.options.backend}; daemons {daemons}; listening on {ins}", flush=True)
 
 
-def _handlers(stop: threading.Event, also: Callable[[], None] | None = None) -> dict[int, Any]:
-    """SIGINT and SIGTERM only set ``stop`` (and call ``also``, which must be signal-safe, such as
-    asking a running tree to stop): the main thread then shuts down in order. SIGINT is set
-    explicitly because a bridge started in the background inherits it ignored."""
-    if threading.current_thread() is not threading.main_thread():
-        return {}
-
-    def handler(signum: int, frame: Any) -> None:
+def _interrupts(stop: threading.Event, also: Callable[[], None] | None = None) -> Interrupts:
+    """SIGINT and SIGTERM only set ``stop`` (and call ``also``, such as asking a running tree to
+    stop), on the interrupts' own thread, never inside the handler (:mod:`stuart_bt.core.interrupts`:
+    setting an event the main thread waits on from the handler can hang it): the main thread then
+    shuts down in order. SIGINT is set explicitly because a bridge started in the background
+    inherits it ignored."""
+    def on_signal(signum: int) -> None:
         stop.set()
         if also is not None:
             also()
 
-    return {s: signal.signal(s, handler) for s in (signal.SIGINT, signal.SIGTERM)}
+    return Interrupts(on_signal)
