@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from stuart_bt.language import Parser, Resolver
-from stuart_bt.mission.tour_talk import BUSY_WITH_TOUR, TourTalk
+from stuart_bt.mission.tour_talk import BUSY_WITH_TOUR, COULD_NOT_ANSWER, TourTalk
 from stuart_bt.testing import lab_markers, run_tree
 
 
@@ -43,6 +43,28 @@ def test_a_question_during_the_tour_is_answered_at_a_pause_and_the_tour_goes_on(
     [hold] = result.events("hold")
     [resume] = result.events("resume")
     assert hold["reason"] == "answering a question" and hold["t"] <= reply["t"] <= resume["t"]
+
+
+class BrokenFacts:
+    """A fault that cannot be caused otherwise: the facts fail while answering."""
+
+    def answer(self, question: str, situation: Any) -> str | None:
+        raise RuntimeError("the facts file went away")
+
+
+def test_a_question_that_cannot_be_answered_still_gets_a_reply_and_a_warning_says_why():
+    visitor = Visitor((at("station_1"), "Hey Stuart, what happens in the drone cage?"))
+
+    def on_tick(live: Any) -> None:
+        visitor(live)
+        if visitor.talk is not None and not isinstance(visitor.talk.facts, BrokenFacts):
+            visitor.talk.facts = BrokenFacts()  # type: ignore[assignment]
+
+    result = run_tree("trees/lab_tour.yaml", speed=40, on_tick=on_tick)
+
+    result.assert_success()
+    assert [e["args"]["text"] for e in result.events("command") if e.get("path") == "reply"] == [COULD_NOT_ANSWER]
+    assert any("the facts file went away" in e["message"] for e in result.events("warning"))
 
 
 def test_stop_holds_the_tour_with_nothing_moving_until_continue():

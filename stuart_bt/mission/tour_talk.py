@@ -37,6 +37,7 @@ if TYPE_CHECKING:
     from ..run.session import Session
 
 BUSY_WITH_TOUR = "I'm in the middle of the tour. Say stop first, and I'll listen."
+COULD_NOT_ANSWER = "Sorry, I could not answer that."
 
 
 class TourTalk:
@@ -94,6 +95,15 @@ class TourTalk:
         return command
 
     def _answer(self, text: str) -> None:
+        """On the thinking thread, whose errors would vanish with its future: a question that
+        cannot be answered still gets a reply, and a warning says why."""
+        try:
+            self._answer_now(text)
+        except Exception as e:  # noqa: BLE001 - anything, or the person waits for an answer forever
+            self.events.publish("warning", message=f"could not answer {text[:60]!r}: {type(e).__name__}: {e}")
+            self._queue(COULD_NOT_ANSWER, text, "error")
+
+    def _answer_now(self, text: str) -> None:
         situation = self._situation()
         known = self.facts.answer(text, situation)
         if known is not None:
