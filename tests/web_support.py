@@ -88,8 +88,10 @@ class Served:
     def __enter__(self) -> Served:
         return self
 
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, kind: object, *exc: object) -> None:
         self.close()
+        if kind is not None:  # the test failed: what the server said is the first thing to read
+            print(f"--- stuart-bt serve said:\n{self.output_text}")
 
 
 def call(served: Served, method: str, path: str, body: Any = None, raw: bytes | None = None) -> tuple[int, Any]:
