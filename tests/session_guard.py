@@ -64,6 +64,9 @@ def start_session() -> tuple[str, Path]:
     # PortAudio's PulseAudio client (listing microphones) would make a runtime folder and link it
     # from ~/.config/pulse; with its own path it makes neither outside this folder
     os.environ["PULSE_RUNTIME_PATH"] = str(folder / "pulse")
+    # Chromium (the browser tests) makes ~/.config/chromium for its crash reports whatever its
+    # profile folder is; with the configuration home here it makes it in this folder instead
+    os.environ["XDG_CONFIG_HOME"] = str(folder / "config")
     tempfile.tempdir = None  # gettempdir() looks at TMPDIR again
     return mark, folder
 
