@@ -28,6 +28,8 @@ if TYPE_CHECKING:
 
 MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
 
+COULD_NOT_ANSWER = "Sorry, I could not answer that."  # what the robot says when answering failed
+
 
 class Replies:
     """Replies to talk. ``offer`` may turn a request into a task proposal instead (True: it did);
@@ -106,6 +108,9 @@ class Replies:
                 reply = self.conversation.reply(text, context)
                 reply = Reply(checked_reply(reply.text, situation), list(reply.gestures))
                 self._publish_reply(text, reply, "model")
+            except Exception as e:  # noqa: BLE001 - on this thread an error would vanish, and nobody answer
+                jobs.events.publish("warning", message=f"could not answer {text[:60]!r}: {type(e).__name__}: {e}")
+                self._publish_reply(text, Reply(COULD_NOT_ANSWER), "error")
             finally:
                 with jobs.cond:
                     jobs.pending_replies -= 1

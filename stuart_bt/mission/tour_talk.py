@@ -27,7 +27,7 @@ from ..conversation.facts import FactAnswers, Situation, checked_reply
 from ..conversation.prompt import load_knowledge
 from .attention import Attention
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
-from .replies import situation_now
+from .replies import COULD_NOT_ANSWER, situation_now
 
 if TYPE_CHECKING:
     from ..conversation.reply import Conversation
@@ -37,7 +37,6 @@ if TYPE_CHECKING:
     from ..run.session import Session
 
 BUSY_WITH_TOUR = "I'm in the middle of the tour. Say stop first, and I'll listen."
-COULD_NOT_ANSWER = "Sorry, I could not answer that."
 
 
 class TourTalk:
