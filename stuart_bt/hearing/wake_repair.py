@@ -126,7 +126,8 @@ def said_to_someone_else(text: str, name: str, pronounce: Pronounce) -> bool:
 
 def names_the_robot(text: str, name: str, pronounce: Pronounce) -> bool:
     """Whether a word of ``text`` is the robot's ``name``, however spelled ("Stewart", "steward")."""
-    return any(_sounds_like(" ".join(spoken(word)), name, pronounce) for word in text.split() if spoken(word))
+    keys = (" ".join(spoken(word)) for word in text.split())
+    return any(_sounds_like(key, name, pronounce) for key in keys if key)
 
 
 # words a sentence often opens with before a pause, written with a capital for that alone

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 from .wake import GREETINGS
 
 if TYPE_CHECKING:
-    from .parse import Parser
+    from .parse import Parser, ParseResult
     from .resolve import Resolver
 
 READING_MARGIN = 0.15  # average log probability per token a command reading may trail the best by
@@ -42,7 +42,11 @@ STOP_MARGIN = ADDRESSEE_MARGIN
 
 def is_clear_command(text: str, parser: Parser, resolver: Resolver) -> bool:
     """Addressed to the robot, with intents, no doubt, every target resolved."""
-    result = parser.parse(text)
+    return _clear(parser.parse(text), resolver)
+
+
+def _clear(result: ParseResult, resolver: Resolver) -> bool:
+    """:func:`is_clear_command` of a text already parsed."""
     if not result.wake or not result.intents or result.doubt:
         return False
     return all(r is None or r.ok for r in resolver.resolve_all(result.intents))
@@ -68,8 +72,10 @@ def _only_a_stop(readings: Sequence[tuple[str, float]], least: float, parser: Pa
     """Index of the first reading scored at least ``least`` that is a clear command to stop and
     nothing else ("Stewart, stop."); 0 when none is."""
     for index, (text, score) in enumerate(readings[1:], 1):
-        if score >= least and is_clear_command(text, parser, resolver) and all(
-                i.action == "stop" for i in parser.parse(text).intents):
+        if score < least:
+            continue
+        result = parser.parse(text)
+        if _clear(result, resolver) and all(i.action == "stop" for i in result.intents):
             return index
     return 0
 

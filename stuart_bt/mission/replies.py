@@ -22,6 +22,7 @@ from .running import look_tree
 
 if TYPE_CHECKING:
     from ..conversation.reply import Conversation
+    from ..core.events import EventStream
     from ..core.world import WorldState
     from ..run.session import Session
     from .queue import JobQueue
@@ -29,6 +30,12 @@ if TYPE_CHECKING:
 MAX_PENDING_REPLIES = 2  # questions being thought about at once; more talk meanwhile goes unanswered
 
 COULD_NOT_ANSWER = "Sorry, I could not answer that."  # what the robot says when answering failed
+
+
+def warn_unanswered(events: EventStream, text: str, error: Exception) -> None:
+    """The warning that says why ``text`` got :data:`COULD_NOT_ANSWER` (answers are made on a
+    thread of their own, where the error would otherwise vanish)."""
+    events.publish("warning", message=f"could not answer {text[:60]!r}: {type(error).__name__}: {error}")
 
 
 class Replies:
@@ -109,7 +116,7 @@ class Replies:
                 reply = Reply(checked_reply(reply.text, situation), list(reply.gestures))
                 self._publish_reply(text, reply, "model")
             except Exception as e:  # noqa: BLE001 - on this thread an error would vanish, and nobody answer
-                jobs.events.publish("warning", message=f"could not answer {text[:60]!r}: {type(e).__name__}: {e}")
+                warn_unanswered(jobs.events, text, e)
                 self._publish_reply(text, Reply(COULD_NOT_ANSWER), "error")
             finally:
                 with jobs.cond:

@@ -64,7 +64,8 @@ class TalkingTree:
             self._running.clear()
 
     def request_stop(self, reason: str) -> None:
-        """End the run at the next tick (thread- and signal-safe; before ``run`` it ends at once)."""
+        """End the run at the next tick (any thread; from a signal, through
+        :mod:`stuart_bt.core.interrupts`; before ``run`` it ends at once)."""
         self.session.request_stop(reason)
 
     def close(self) -> None:

@@ -27,7 +27,7 @@ from ..conversation.facts import FactAnswers, Situation, checked_reply
 from ..conversation.prompt import load_knowledge
 from .attention import Attention
 from .commands import CONTINUE, CONVERSATION, IGNORE, STOP, Command, interpret
-from .replies import COULD_NOT_ANSWER, situation_now
+from .replies import COULD_NOT_ANSWER, situation_now, warn_unanswered
 
 if TYPE_CHECKING:
     from ..conversation.reply import Conversation
@@ -99,7 +99,7 @@ class TourTalk:
         try:
             self._answer_now(text)
         except Exception as e:  # noqa: BLE001 - anything, or the person waits for an answer forever
-            self.events.publish("warning", message=f"could not answer {text[:60]!r}: {type(e).__name__}: {e}")
+            warn_unanswered(self.events, text, e)
             self._queue(COULD_NOT_ANSWER, text, "error")
 
     def _answer_now(self, text: str) -> None:

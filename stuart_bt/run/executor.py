@@ -79,7 +79,8 @@ class Executor:
         return 1.0 / self.rate
 
     def request_stop(self, reason: str = "stop requested", status: str = "STOPPED") -> None:
-        """Ask the loop to halt the tree at the start of the next tick (thread- and signal-safe).
+        """Ask the loop to halt the tree at the start of the next tick (any thread; from a signal,
+        through :mod:`stuart_bt.core.interrupts`, never inside the handler itself).
         ``status`` is the outcome's: STOPPED when someone asked, ERROR when the run cannot go on."""
         if not self._stop.is_set():
             self._stop_status = status
